@@ -1,0 +1,155 @@
+// Implicit fairing of irregular meshes (Desbrun, Meyer, Schroeder, Barr, SIGGRAPH 1999):
+// the one entry point every host (MeshLab filters, the command-line tool, tests) calls.
+//
+//   fairing::Options options;                 // documented defaults below
+//   options.op = fairing::Operator::CurvatureFlow;
+//   fairing::Result r = fairing::fair(mesh, constraints, options);
+//   // r.positions holds the new positions; the input is never modified.
+//
+// Conventions:
+// - Every operator is L = M^-1 K with M diagonal positive and K symmetric, zero row sums,
+//   negative semi-definite. Implicit steps solve the symmetric positive definite system
+//   (M/w - lambda_dt K) X' = (M/w) X (eq. 9 multiplied by M; w = soft-constraint weights), or
+//   for the second order (M/w + lambda_dt K M^-1 K) X' = (M/w) X (section 2.6).
+// - The time step given by the user is dimensionless. For the scale-dependent umbrella and the
+//   curvature flow (L in 1/length^2) the absolute lambda_dt is time_step * (mean edge length)^2,
+//   so the same settings work whatever the mesh's units; for the umbrella and the normalized
+//   operators (L dimensionless) lambda_dt = time_step. Result::lambda_dt reports the value used.
+// - fair() throws fairing::Error on refusal (bad input, failed solve, non-finite values); the
+//   caller's data is untouched because it only ever receives positions from a finished run.
+#pragma once
+
+#include "fairing/types.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace fairing {
+
+enum class Operator {
+    Umbrella,        // eq. 7: uniform weights, valence mass.
+    ScaleDependent,  // eq. 11 (Fujiwara): weights 1/|e_ij|, mass E/2.
+    CurvatureFlow,   // eq. 14: weights cot(alpha)+cot(beta), mass 4A (one-ring area).
+};
+
+enum class Integration {
+    Implicit,  // backward Euler, eq. 9: unconditionally stable.
+    Explicit,  // forward Euler, eq. 8: stable only for small lambda_dt (a warning says when not).
+};
+
+enum class BoundaryMode {
+    Fixed,          // boundary vertices do not move.
+    SmoothCurve,    // section 5.3: boundary loops follow eq. 11 restricted to their two boundary
+                    // neighbours, solved first; the interior then follows with the new curve.
+    VirtualVertex,  // section 5.3: a hidden vertex at the barycentre of each loop, fanned to it.
+};
+
+// What is restored after each step on components that are not closed (they enclose no volume).
+enum class OpenInvariant {
+    None,  // nothing: the component may shrink.
+    Area,  // surface area (section 3.2's "preserve the surface area if the mesh is non-closed").
+};
+
+enum class ResidualNorm { L2, LInfinity };  // Appendix A.2.
+
+struct Options {
+    Operator op = Operator::CurvatureFlow;
+    Integration integration = Integration::Implicit;
+    // 1: diffusion with L (eq. 6). 2: with L^2, (I + lambda_dt L^2) X' = X (section 2.6), the
+    // paper's recommendation and the better denoiser.
+    int order = 2;
+    // Dimensionless; see the conventions above. Must be finite and >= 0.
+    double time_step = 1.0;
+    int steps = 1;
+    // Section 4.3: keep the coefficients of the first step for all steps (smoothing "relative to
+    // the initial mesh"). Off: coefficients are recomputed from the current mesh at each step.
+    bool freeze_operator = false;
+    // Explicit integration only: use the normalized operators of section 5.5 (eigenvalues of L
+    // in [-2, 0], so time_step is dimensionless and up to 1 is stable).
+    bool normalized = false;
+    BoundaryMode boundary = BoundaryMode::Fixed;
+    // Sections 3.1-3.2: after each step rescale every closed component by (V0/Vn)^(1/3) about
+    // its centroid. A component with fixed vertices is restored by a uniform offset of its free
+    // vertices along their normals instead, so fixed vertices stay where they are.
+    bool preserve_volume = true;
+    OpenInvariant open_invariant = OpenInvariant::None;
+    // Solver (Appendix A): stop when ||A X - b|| < tolerance ||b|| for x, y and z. b is the
+    // mass-weighted position of the centred mesh, so 1e-8 leaves an error far below an edge.
+    double tolerance = 1e-8;
+    ResidualNorm norm = ResidualNorm::L2;
+    int max_iterations = 2000;
+    // When the iteration cap is hit: false refuses (the input stays as it was); true accepts the
+    // last iterate and records a warning with the residual reached.
+    bool accept_unconverged = false;
+    // Called now and then with the fraction of the work done, in [0, 1].
+    std::function<void(double)> progress;
+};
+
+// Per-vertex constraints (section 2.7). Empty vectors mean "none".
+struct Constraints {
+    std::vector<char> fixed;      // nonzero: hard constraint, the position stays bit-identical.
+    std::vector<double> weights;  // soft constraint in [0, 1], scales lambda at the vertex;
+                                  // 0 is a hard constraint. Values outside are an error.
+};
+
+struct TriangleMesh {
+    Positions positions;
+    std::vector<Triangle> triangles;
+};
+
+// One linear solve (per step there is one, plus one for the boundary curve in SmoothCurve mode).
+struct SolveReport {
+    int step = 0;
+    std::string system;    // "surface" or "boundary curve"
+    int iterations = 0;
+    double residual = 0;   // max over x, y, z of ||A X - b|| / ||b|| in the chosen norm
+    bool converged = true;
+};
+
+enum class Restoration {
+    None,            // nothing restored (switched off, or open component with OpenInvariant::None)
+    Scale,           // rescaled about the component's centroid (eq. 10 and section 3.2)
+    NormalOffset,    // free vertices offset along their normals (the component has fixed vertices)
+    Unchanged,       // every vertex of the component is fixed
+};
+
+struct ComponentReport {
+    int faces = 0;
+    bool closed = false;       // no boundary, consistently oriented: encloses a volume
+    bool has_fixed = false;
+    Restoration restoration = Restoration::None;
+    // The invariant measured: volume for closed components, area for open ones.
+    double measure_before = 0;
+    double measure_after = 0;
+};
+
+struct Result {
+    Positions positions;            // the new positions, one row per input vertex
+    double lambda_dt = 0;           // absolute lambda*dt used per step
+    int steps = 0;
+    std::vector<SolveReport> solves;
+    int total_iterations = 0;
+    double max_residual = 0;
+    double volume_before = 0;       // sum over closed components
+    double volume_after = 0;
+    std::vector<ComponentReport> components;
+    int vertices_moved = 0;         // vertices whose position changed
+    int vertices_fixed = 0;         // hard constraints (user, weight 0, fixed boundary, frozen)
+    int isolated_vertices = 0;      // referenced by no face: left out
+    int zero_area_faces = 0;        // contribute nothing to the operators
+    int dropped_faces = 0;          // faces repeating a vertex index: left out
+    int inconsistent_edges = 0;     // edges whose two faces disagree on orientation
+    int boundary_loops = 0;
+    std::vector<std::string> warnings;
+    double seconds = 0;
+};
+
+// Runs options.steps steps of implicit (or explicit) fairing. Throws fairing::Error.
+Result fair(const TriangleMesh& mesh, const Constraints& constraints, const Options& options);
+
+const char* to_string(Operator op);
+const char* to_string(BoundaryMode mode);
+const char* to_string(Restoration restoration);
+
+}  // namespace fairing

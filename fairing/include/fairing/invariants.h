@@ -1,0 +1,27 @@
+// Volume and area of mesh components, and their exact restoration (sections 3.1-3.2).
+//
+// Conventions: the volume of a closed, outward-oriented component is positive (eq. 10); it is
+// computed on coordinates relative to a reference point of the component so that it stays
+// accurate far from the origin. Restoration acts on one component at a time.
+#pragma once
+
+#include "fairing/fairing.h"
+#include "fairing/half_edge.h"
+
+namespace fairing {
+
+// Eq. 10: V = 1/6 sum_k g_k . N_k over the component's faces.
+double component_volume(const HalfEdgeMesh& mesh, const Component& component,
+                        const Positions& positions);
+double component_area(const HalfEdgeMesh& mesh, const Component& component,
+                      const Positions& positions);
+
+// Restores `target` (volume for closed components, area for open ones) on one component.
+// Without fixed vertices: scales about the centroid (the solid's for volume, the surface's for
+// area) by (target/now)^(1/3) or ^(1/2). With fixed vertices: offsets every free vertex of the
+// component by t * n_i (area-weighted vertex normal) with t solved to machine precision, so
+// fixed vertices do not move. Returns the method used. Throws Error if no t restores it.
+Restoration restore_measure(const HalfEdgeMesh& mesh, const Component& component,
+                            const std::vector<char>& free, double target, Positions& positions);
+
+}  // namespace fairing

@@ -1,0 +1,52 @@
+// The paper's discrete Laplacians in the symmetric form L = M^-1 K.
+//
+// Conventions:
+// - K is stored by its off-diagonal part only, in compressed rows: (K x)_i = sum_j w_ij (x_j - x_i),
+//   so K_ij = w_ij (i != j), K_ii = -sum_j w_ij, rows sum to zero and K is symmetric (w_ij = w_ji).
+// - mass[i] = M_ii > 0 for every vertex that takes part; 0 for vertices that do not (isolated,
+//   or whose whole star is degenerate); their row of K is empty.
+// - Units: umbrella K, M dimensionless; scale-dependent K in 1/length, M in length; curvature
+//   K dimensionless, M in length^2. So L is dimensionless for the umbrella and 1/length^2 else.
+#pragma once
+
+#include "fairing/fairing.h"
+#include "fairing/half_edge.h"
+
+#include <vector>
+
+namespace fairing {
+
+struct SparseOperator {
+    std::vector<int> row_start;  // size n+1
+    std::vector<int> column;
+    std::vector<double> weight;  // w_ij
+    std::vector<double> mass;    // M_ii
+
+    int size() const { return static_cast<int>(mass.size()); }
+    double diagonal(int i) const;  // K_ii = -sum_j w_ij
+    // y = K x (three columns at once).
+    void apply_k(const Positions& x, Positions& y) const;
+    // y = L x = M^-1 K x, 0 on rows with no mass.
+    void apply_l(const Positions& x, Positions& y) const;
+};
+
+struct AssemblyReport {
+    int zero_area_faces = 0;   // skipped by the curvature operator
+    int floored_edges = 0;     // edges shorter than 1e-4 of the mean, lengthened for 1/|e|
+    int massless_vertices = 0; // vertices with faces but no mass: their star is degenerate
+};
+
+// Assembles op on the mesh at the given positions (curvature: eq. 14, faces of zero area skipped;
+// scale-dependent: eq. 11; umbrella: eq. 7). With normalized = true, mass[i] = sum_j w_ij
+// (section 5.5; for the umbrella this is the valence, i.e. no change).
+SparseOperator assemble(Operator op, const HalfEdgeMesh& mesh, const Positions& positions,
+                        bool normalized = false, AssemblyReport* report = nullptr);
+
+// Eq. 11 restricted to the two boundary neighbours of every boundary vertex (section 5.3):
+// rows of interior vertices are empty and massless.
+SparseOperator assemble_boundary_curve(const HalfEdgeMesh& mesh, const Positions& positions);
+
+// Mean length of the mesh's undirected edges.
+double mean_edge_length(const HalfEdgeMesh& mesh, const Positions& positions);
+
+}  // namespace fairing

@@ -1,0 +1,50 @@
+// Jacobi-preconditioned conjugate gradients for the symmetric positive definite systems of
+// implicit fairing (Appendix A, with CG in place of BiCG since the system is symmetric):
+//
+//   order 1:  A = D - lambda_dt K              (eq. 9 multiplied by M)
+//   order 2:  A = D + lambda_dt K M^-1 K       (section 2.6 multiplied by M), applied matrix-free
+//
+// with D_i = M_i / w_i (soft constraints, section 2.7). Rows with free[i] == 0 are hard
+// constraints: x_i keeps its value, its terms move to the right-hand side, and the system on the
+// free rows stays SPD. x, y and z are advanced together (one sweep over K serves all three), each
+// with its own CG coefficients.
+#pragma once
+
+#include "fairing/fairing.h"
+#include "fairing/operators.h"
+
+#include <vector>
+
+namespace fairing {
+
+struct LinearSystem {
+    const SparseOperator* op = nullptr;
+    std::vector<double> diagonal;  // D_i
+    std::vector<char> free;        // nonzero: unknown
+    double lambda_dt = 0;
+    int order = 1;
+
+    // y = A x on all rows (fixed rows included; callers mask them).
+    void apply(const Positions& x, Positions& y, Positions& scratch) const;
+    // Jacobi preconditioner: the diagonal of A.
+    std::vector<double> jacobi_diagonal() const;
+};
+
+struct SolveStats {
+    int iterations = 0;
+    double residual = 0;  // max over columns of ||A x - b|| / ||b|| on the free rows
+    bool converged = false;
+};
+
+struct SolveSettings {
+    double tolerance = 1e-10;
+    ResidualNorm norm = ResidualNorm::L2;
+    int max_iterations = 2000;
+};
+
+// Solves A x = D x_old on the free rows; x holds x_old on entry (warm start, and the fixed
+// values) and the solution on exit. Throws Error when a value stops being finite. Non-convergence
+// is reported in the stats, not thrown.
+SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& settings);
+
+}  // namespace fairing

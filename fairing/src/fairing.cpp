@@ -1,0 +1,407 @@
+#include "fairing/fairing.h"
+
+#include "fairing/half_edge.h"
+#include "fairing/invariants.h"
+#include "fairing/operators.h"
+#include "fairing/solver.h"
+#include "geometry.h"
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+namespace fairing {
+
+const char* to_string(Operator op) {
+    switch (op) {
+    case Operator::Umbrella: return "umbrella (eq. 7)";
+    case Operator::ScaleDependent: return "scale-dependent umbrella (eq. 11)";
+    case Operator::CurvatureFlow: return "curvature flow (eq. 14)";
+    }
+    return "?";
+}
+
+const char* to_string(BoundaryMode mode) {
+    switch (mode) {
+    case BoundaryMode::Fixed: return "fixed";
+    case BoundaryMode::SmoothCurve: return "smooth boundary curve";
+    case BoundaryMode::VirtualVertex: return "virtual vertex";
+    }
+    return "?";
+}
+
+const char* to_string(Restoration restoration) {
+    switch (restoration) {
+    case Restoration::None: return "none";
+    case Restoration::Scale: return "scaled about the centroid";
+    case Restoration::NormalOffset: return "normal offset of the free vertices";
+    case Restoration::Unchanged: return "unchanged (all vertices fixed)";
+    }
+    return "?";
+}
+
+namespace {
+
+std::string number(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+
+void validate(const TriangleMesh& mesh, const Constraints& constraints, const Options& options) {
+    const std::size_t n = static_cast<std::size_t>(mesh.positions.rows());
+    if (!constraints.fixed.empty() && constraints.fixed.size() != n)
+        throw Error("the fixed-vertex mask has size " + std::to_string(constraints.fixed.size()) +
+                    " but the mesh has " + std::to_string(n) + " vertices");
+    if (!constraints.weights.empty() && constraints.weights.size() != n)
+        throw Error("the vertex weights have size " + std::to_string(constraints.weights.size()) +
+                    " but the mesh has " + std::to_string(n) + " vertices");
+    long long bad_weights = 0;
+    for (double w : constraints.weights)
+        if (!(w >= 0.0 && w <= 1.0)) ++bad_weights;
+    if (bad_weights > 0)
+        throw Error(detail::count_of(bad_weights, "vertex weight is", "vertex weights are") +
+                    " outside [0, 1] or not a number; a weight scales the smoothing at its "
+                    "vertex (section 2.7), 0 keeps it fixed");
+    if (!(std::isfinite(options.time_step) && options.time_step >= 0))
+        throw Error("the time step must be a finite number >= 0 (got " +
+                    number(options.time_step) + ")");
+    if (options.steps < 0)
+        throw Error("the number of steps must be >= 0 (got " + std::to_string(options.steps) + ")");
+    if (options.order != 1 && options.order != 2)
+        throw Error("the operator order must be 1 (L) or 2 (L squared), got " +
+                    std::to_string(options.order));
+    if (!(std::isfinite(options.tolerance) && options.tolerance > 0))
+        throw Error("the solver tolerance must be a finite number > 0 (got " +
+                    number(options.tolerance) + ")");
+    if (options.max_iterations < 1)
+        throw Error("the iteration cap must be at least 1 (got " +
+                    std::to_string(options.max_iterations) + ")");
+    if (options.normalized && options.integration == Integration::Implicit)
+        throw Error("the normalized operators (section 5.5) are meant for explicit integration; "
+                    "switch them off for implicit integration");
+}
+
+// Appends the virtual vertex of each boundary loop (section 5.3) at the loop's barycentre and
+// the fan of faces joining it to the loop, each fan face running opposite to its boundary edge.
+void add_virtual_vertices(const HalfEdgeMesh& mesh, Positions& x, std::vector<Triangle>& faces) {
+    const int n = mesh.num_vertices();
+    const auto& loops = mesh.boundary_loops();
+    x.conservativeResize(n + static_cast<int>(loops.size()), 3);
+    for (std::size_t l = 0; l < loops.size(); ++l) {
+        const int v = n + static_cast<int>(l);
+        Vec3 sum = Vec3::Zero();
+        for (int b : loops[l]) sum += detail::row(x, b);
+        x.row(v) = (sum / static_cast<double>(loops[l].size())).transpose();
+        for (int h : mesh.boundary_loop_edges()[l]) faces.push_back({mesh.to(h), mesh.from(h), v});
+    }
+}
+
+// Explicit stability bound from Gershgorin's theorem on L = M^-1 K: its eigenvalues lie in
+// [-mu, 0] with mu = max_i 2 sum_j |w_ij| / M_i, and forward Euler is stable while
+// lambda_dt mu <= 2 (order 1) or lambda_dt mu^2 <= 2 (order 2). For the umbrella mu = 2, which
+// gives the paper's lambda_dt < 1 (section 2.2).
+double explicit_bound(const SparseOperator& op, const std::vector<char>& free, int order) {
+    double mu = 0;
+    for (int i = 0; i < op.size(); ++i) {
+        if (!free[i] || !(op.mass[i] > 0)) continue;
+        double sum = 0;
+        for (int k = op.row_start[i]; k < op.row_start[i + 1]; ++k) sum += std::abs(op.weight[k]);
+        mu = std::max(mu, 2 * sum / op.mass[i]);
+    }
+    if (mu == 0) return INFINITY;
+    return order == 1 ? 2 / mu : 2 / (mu * mu);
+}
+
+class Run {
+public:
+    Run(const TriangleMesh& mesh, const Constraints& constraints, const Options& options)
+        : mesh_(mesh), options_(options), he_(HalfEdgeMesh::build(mesh.positions, mesh.triangles)) {
+        n_ = static_cast<int>(mesh.positions.rows());
+        weight_.assign(n_, 1.0);
+        if (!constraints.weights.empty()) weight_ = constraints.weights;
+        hard_.assign(n_, 0);
+        for (int i = 0; i < n_; ++i)
+            hard_[i] = (!constraints.fixed.empty() && constraints.fixed[i]) || weight_[i] == 0.0;
+    }
+
+    Result run();
+
+private:
+    void integrate(const SparseOperator& op, const std::vector<char>& free, double lambda_dt,
+                   int step, const char* system);
+    void restore();
+    void warn(const std::string& w) { result_.warnings.push_back(w); }
+
+    const TriangleMesh& mesh_;
+    const Options& options_;
+    HalfEdgeMesh he_;
+    HalfEdgeMesh work_;  // he_ plus virtual vertices and their fans, in VirtualVertex mode
+    bool virtual_mode_ = false;
+    int n_ = 0;
+    std::vector<double> weight_;
+    std::vector<char> hard_;        // user constraints and weight 0
+    std::vector<char> restorable_;  // may be moved by the volume/area restoration
+    std::vector<double> target_;    // per component: volume (closed) or area (open), or 0
+    Positions x_;                   // centred working positions (plus virtual vertices)
+    Result result_;
+    bool warned_stability_ = false;
+};
+
+void Run::integrate(const SparseOperator& op, const std::vector<char>& free, double lambda_dt,
+                    int step, const char* system) {
+    const int n = op.size();
+    if (options_.integration == Integration::Explicit) {
+        if (!warned_stability_) {
+            const double bound = explicit_bound(op, free, options_.order);
+            if (lambda_dt > bound) {
+                warn("explicit integration: lambda*dt = " + number(lambda_dt) +
+                     " exceeds the stability bound " + number(bound) + " of this mesh (" +
+                     system + "); expect growing oscillations, or use implicit integration");
+                warned_stability_ = true;
+            }
+        }
+        Positions lx, llx;
+        op.apply_l(x_, lx);
+        double sign = 1;
+        if (options_.order == 2) {  // X' = (I - lambda_dt L^2) X
+            op.apply_l(lx, llx);
+            lx.swap(llx);
+            sign = -1;
+        }
+        for (int i = 0; i < n; ++i)
+            if (free[i]) x_.row(i) += sign * lambda_dt * (i < n_ ? weight_[i] : 1.0) * lx.row(i);
+        SolveReport report;
+        report.step = step;
+        report.system = system;
+        result_.solves.push_back(report);
+        return;
+    }
+
+    LinearSystem linear;
+    linear.op = &op;
+    linear.free = free;
+    linear.lambda_dt = lambda_dt;
+    linear.order = options_.order;
+    linear.diagonal.assign(n, 1.0);
+    for (int i = 0; i < n; ++i)
+        if (free[i]) linear.diagonal[i] = op.mass[i] / (i < n_ ? weight_[i] : 1.0);
+    SolveSettings settings;
+    settings.tolerance = options_.tolerance;
+    settings.norm = options_.norm;
+    settings.max_iterations = options_.max_iterations;
+    const SolveStats stats = solve(linear, x_, settings);
+
+    SolveReport report;
+    report.step = step;
+    report.system = system;
+    report.iterations = stats.iterations;
+    report.residual = stats.residual;
+    report.converged = stats.converged;
+    result_.solves.push_back(report);
+    result_.total_iterations += stats.iterations;
+    result_.max_residual = std::max(result_.max_residual, stats.residual);
+    if (!stats.converged) {
+        const std::string what = "the linear solve (" + std::string(system) + ", step " +
+                                 std::to_string(step + 1) + ") did not converge in " +
+                                 std::to_string(stats.iterations) + " iterations: residual " +
+                                 number(stats.residual) + ", tolerance " +
+                                 number(options_.tolerance);
+        if (!options_.accept_unconverged)
+            throw Error(what + ". Raise the iteration cap or the tolerance, or use a smaller "
+                               "time step; the mesh was left unchanged");
+        warn(what + "; the unconverged result was kept as asked");
+    }
+}
+
+void Run::restore() {
+    const auto& components = he_.components();
+    for (std::size_t c = 0; c < components.size(); ++c) {
+        if (target_[c] == 0) continue;
+        // x_ may hold virtual vertices after the first n_ rows; they are not part of any
+        // component and restore_measure only touches the component's own rows.
+        const Restoration how = restore_measure(he_, components[c], restorable_, target_[c], x_);
+        result_.components[c].restoration = how;
+    }
+}
+
+Result Run::run() {
+    const auto start = std::chrono::steady_clock::now();
+    const ValidationReport& report = he_.report();
+    result_.positions = mesh_.positions;
+    result_.isolated_vertices = report.isolated_vertices;
+    result_.zero_area_faces = report.zero_area_faces;
+    result_.dropped_faces = report.dropped_faces;
+    result_.inconsistent_edges = report.inconsistent_edges;
+    result_.boundary_loops = static_cast<int>(he_.boundary_loops().size());
+    if (he_.num_faces() == 0)
+        throw Error("the mesh has no faces (" +
+                    detail::count_of(n_, "vertex", "vertices") + ", " +
+                    detail::count_of(static_cast<long long>(mesh_.triangles.size()), "face",
+                                     "faces") +
+                    " given): there is nothing to smooth");
+
+    const BoundaryMode boundary = options_.boundary;
+    virtual_mode_ = boundary == BoundaryMode::VirtualVertex && !he_.boundary_loops().empty();
+    if (virtual_mode_ && report.nonmanifold_vertices > 0)
+        throw Error(detail::count_of(report.nonmanifold_vertices, "boundary vertex is",
+                                     "boundary vertices are") +
+                    " non-manifold (several boundary loops meet there), so the virtual-vertex "
+                    "boundary mode cannot close the holes; run MeshLab's 'Repair non Manifold "
+                    "Vertices' filter first, or choose another boundary mode");
+
+    // Work on coordinates centred on the bounding box: the stopping rule and the volume are
+    // then as accurate far from the origin as near it.
+    Eigen::RowVector3d lo = Eigen::RowVector3d::Constant(INFINITY), hi = -lo;
+    for (int i = 0; i < n_; ++i)
+        if (!he_.is_isolated(i)) {
+            lo = lo.cwiseMin(mesh_.positions.row(i));
+            hi = hi.cwiseMax(mesh_.positions.row(i));
+        }
+    const Eigen::RowVector3d origin = 0.5 * (lo + hi);
+    x_ = mesh_.positions.rowwise() - origin;
+
+    const double mean_edge = mean_edge_length(he_, x_);
+    const bool has_units = options_.op != Operator::Umbrella && !options_.normalized;
+    const double lambda_dt = options_.time_step * (has_units ? mean_edge * mean_edge : 1.0);
+    const double curve_lambda_dt = options_.time_step * mean_edge * mean_edge;
+    result_.lambda_dt = lambda_dt;
+
+    // Who may move, in the surface system and in the restoration.
+    std::vector<char> free_surface(n_, 1), free_curve(n_, 0);
+    restorable_.assign(n_, 1);
+    for (int i = 0; i < n_; ++i) {
+        const bool pinned = hard_[i] || he_.is_isolated(i) ||
+                            (boundary == BoundaryMode::Fixed && he_.is_boundary_vertex(i));
+        restorable_[i] = !pinned;
+        free_surface[i] = !pinned && !(boundary == BoundaryMode::SmoothCurve &&
+                                        he_.is_boundary_vertex(i));
+        free_curve[i] = !pinned && boundary == BoundaryMode::SmoothCurve &&
+                        he_.is_boundary_vertex(i);
+    }
+    for (int v : he_.nonmanifold_vertices()) free_curve[v] = 0;
+
+    std::vector<Triangle> work_faces;
+    if (virtual_mode_) {
+        work_faces = he_.faces();
+        add_virtual_vertices(he_, x_, work_faces);
+        work_ = HalfEdgeMesh::build(x_, work_faces);
+        free_surface.resize(x_.rows(), 1);
+    }
+    const HalfEdgeMesh& work = virtual_mode_ ? work_ : he_;
+
+    // Invariants to keep, per component (sections 3.1-3.2).
+    const auto& components = he_.components();
+    target_.assign(components.size(), 0.0);
+    result_.components.resize(components.size());
+    int open_unrestored = 0;
+    for (std::size_t c = 0; c < components.size(); ++c) {
+        ComponentReport& cr = result_.components[c];
+        const Component& comp = components[c];
+        cr.faces = static_cast<int>(comp.faces.size());
+        cr.closed = comp.closed();
+        for (int v : comp.vertices) cr.has_fixed = cr.has_fixed || !restorable_[v];
+        cr.measure_before = cr.closed ? component_volume(he_, comp, x_) : component_area(he_, comp, x_);
+        if (!options_.preserve_volume) continue;
+        if (cr.closed) target_[c] = cr.measure_before;
+        else if (options_.open_invariant == OpenInvariant::Area) target_[c] = cr.measure_before;
+        else ++open_unrestored;
+    }
+    if (open_unrestored > 0)
+        warn(detail::count_of(open_unrestored, "open component encloses", "open components enclose") +
+             " no volume: nothing was restored there (choose Area for open components to keep "
+             "their surface area)");
+
+    std::vector<char> ever_free(n_, 0);
+    const int steps = lambda_dt > 0 ? options_.steps : 0;
+    const bool recompute = options_.op != Operator::Umbrella && !options_.freeze_operator;
+    SparseOperator surface, curve;
+    AssemblyReport assembly, worst;
+    for (int step = 0; step < steps; ++step) {
+        if (step == 0 || recompute) {
+            surface = assemble(options_.op, work, x_, options_.normalized, &assembly);
+            worst.zero_area_faces = std::max(worst.zero_area_faces, assembly.zero_area_faces);
+            worst.floored_edges = std::max(worst.floored_edges, assembly.floored_edges);
+            worst.massless_vertices = std::max(worst.massless_vertices, assembly.massless_vertices);
+            if (boundary == BoundaryMode::SmoothCurve) curve = assemble_boundary_curve(he_, x_);
+        }
+        if (boundary == BoundaryMode::SmoothCurve && !he_.boundary_loops().empty()) {
+            for (int i = 0; i < n_; ++i) ever_free[i] |= free_curve[i];
+            integrate(curve, free_curve, curve_lambda_dt, step, "boundary curve");
+        }
+        std::vector<char> free = free_surface;
+        for (int i = 0; i < surface.size(); ++i)
+            if (!(surface.mass[i] > 0)) free[i] = 0;
+        for (int i = 0; i < n_; ++i) ever_free[i] |= free[i];
+        integrate(surface, free, lambda_dt, step, "surface");
+        if (!x_.allFinite())
+            throw Error("step " + std::to_string(step + 1) +
+                        " produced non-finite positions; the mesh was left unchanged (with "
+                        "explicit integration, use a smaller time step)");
+        restore();
+        ++result_.steps;
+        if (options_.progress) options_.progress(static_cast<double>(step + 1) / steps);
+    }
+
+    // Vertices that may not move keep their input coordinates bit for bit.
+    int fixed = 0;
+    for (int i = 0; i < n_; ++i) {
+        if (he_.is_isolated(i)) continue;
+        if (!ever_free[i]) ++fixed;
+        if (restorable_[i]) result_.positions.row(i) = x_.row(i) + origin;
+    }
+    if (!result_.positions.allFinite())
+        throw Error("the result holds non-finite positions; the mesh was left unchanged");
+    result_.vertices_fixed = fixed;
+    for (int i = 0; i < n_; ++i)
+        if (result_.positions.row(i) != mesh_.positions.row(i)) ++result_.vertices_moved;
+    for (std::size_t c = 0; c < components.size(); ++c) {
+        ComponentReport& cr = result_.components[c];
+        cr.measure_after = cr.closed ? component_volume(he_, components[c], x_)
+                                     : component_area(he_, components[c], x_);
+        if (cr.closed) {
+            result_.volume_before += cr.measure_before;
+            result_.volume_after += cr.measure_after;
+        }
+    }
+
+    if (report.dropped_faces > 0)
+        warn(detail::count_of(report.dropped_faces, "face repeats", "faces repeat") +
+             " a vertex and was left out (MeshLab's 'Remove Zero Area Faces' deletes them)");
+    if (report.isolated_vertices > 0)
+        warn(detail::count_of(report.isolated_vertices, "isolated vertex", "isolated vertices") +
+             " (in no face) left out (MeshLab's 'Remove Unreferenced Vertices' deletes them)");
+    if (report.zero_area_faces > 0)
+        warn(detail::count_of(report.zero_area_faces, "face has", "faces have") +
+             " zero area and contribute nothing to the curvature operator (MeshLab's 'Remove "
+             "Zero Area Faces' deletes them)");
+    if (report.inconsistent_edges > 0)
+        warn(detail::count_of(report.inconsistent_edges, "edge joins", "edges join") +
+             " faces of opposite orientation; their components are treated as open (run "
+             "MeshLab's 'Re-Orient all faces coherentely')");
+    if (report.nonmanifold_vertices > 0 && boundary == BoundaryMode::SmoothCurve)
+        warn(detail::count_of(report.nonmanifold_vertices, "non-manifold boundary vertex was",
+                              "non-manifold boundary vertices were") +
+             " kept out of the boundary-curve smoothing");
+    if (worst.floored_edges > 0)
+        warn(detail::count_of(worst.floored_edges, "edge is", "edges are") +
+             " shorter than 1e-4 of the mean edge (duplicated vertices?); their weight was "
+             "bounded (MeshLab's 'Merge Close Vertices' repairs this)");
+    if (worst.massless_vertices > 0)
+        warn(detail::count_of(worst.massless_vertices, "vertex has", "vertices have") +
+             " only degenerate faces around it and was kept in place");
+
+    result_.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result_;
+}
+
+}  // namespace
+
+Result fair(const TriangleMesh& mesh, const Constraints& constraints, const Options& options) {
+    validate(mesh, constraints, options);
+    Run run(mesh, constraints, options);
+    return run.run();
+}
+
+}  // namespace fairing

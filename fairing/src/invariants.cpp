@@ -1,0 +1,140 @@
+#include "fairing/invariants.h"
+
+#include "geometry.h"
+
+#include <cmath>
+#include <functional>
+#include <limits>
+
+namespace fairing {
+namespace {
+
+// Sums a per-face quantity over the component with every vertex at position(v).
+template <class Position, class PerFace>
+void for_each_face(const HalfEdgeMesh& mesh, const Component& component, Position position,
+                   PerFace per_face) {
+    for (int f : component.faces) {
+        const Triangle& t = mesh.faces()[f];
+        per_face(position(t[0]), position(t[1]), position(t[2]));
+    }
+}
+
+// Volume (eq. 10, pyramids from the reference point o) or area of the component.
+template <class Position>
+double measure(const HalfEdgeMesh& mesh, const Component& component, bool volume,
+               const Vec3& o, Position position) {
+    double sum = 0;
+    for_each_face(mesh, component, position, [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+        if (volume) sum += (a - o).dot((b - o).cross(c - o)) / 6.0;
+        else sum += 0.5 * (b - a).cross(c - a).norm();
+    });
+    return sum;
+}
+
+// Centroid of the enclosed solid (volume) or of the surface (area).
+Vec3 centroid(const HalfEdgeMesh& mesh, const Component& component, bool volume,
+              const Positions& x) {
+    const Vec3 o = detail::row(x, component.vertices.front());
+    Vec3 sum = Vec3::Zero();
+    double total = 0;
+    for_each_face(mesh, component, [&](int v) { return detail::row(x, v); },
+                  [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+                      if (volume) {
+                          const double w = (a - o).dot((b - o).cross(c - o)) / 6.0;
+                          sum += w * (a + b + c - 3 * o) / 4.0;
+                          total += w;
+                      } else {
+                          const double w = 0.5 * (b - a).cross(c - a).norm();
+                          sum += w * (a + b + c - 3 * o) / 3.0;
+                          total += w;
+                      }
+                  });
+    return o + sum / total;
+}
+
+}  // namespace
+
+double component_volume(const HalfEdgeMesh& mesh, const Component& component,
+                        const Positions& positions) {
+    if (component.vertices.empty()) return 0;
+    return measure(mesh, component, true, detail::row(positions, component.vertices.front()),
+                   [&](int v) { return detail::row(positions, v); });
+}
+
+double component_area(const HalfEdgeMesh& mesh, const Component& component,
+                      const Positions& positions) {
+    return measure(mesh, component, false, Vec3::Zero(),
+                   [&](int v) { return detail::row(positions, v); });
+}
+
+Restoration restore_measure(const HalfEdgeMesh& mesh, const Component& component,
+                            const std::vector<char>& free, double target, Positions& x) {
+    const bool volume = component.closed();
+    const char* what = volume ? "volume" : "area";
+    int free_count = 0;
+    for (int v : component.vertices) free_count += free[v] ? 1 : 0;
+    if (free_count == 0) return Restoration::Unchanged;
+
+    // A closed component oriented inwards has a negative volume; work with its magnitude.
+    const double sign = volume && target < 0 ? -1.0 : 1.0;
+    target *= sign;
+    const Vec3 o = detail::row(x, component.vertices.front());
+    const double now =
+        sign * measure(mesh, component, volume, o, [&](int v) { return detail::row(x, v); });
+    if (!(now > 0) || !(target > 0) || !std::isfinite(now))
+        throw Error(std::string("the ") + what + " of a component became " +
+                    (now > 0 ? "non-finite" : "zero or negative") +
+                    " during smoothing, so it cannot be restored; use a smaller time step");
+
+    if (free_count == static_cast<int>(component.vertices.size())) {
+        // Section 3.2: a uniform scale by beta = (V0/Vn)^(1/3), here about the centroid so the
+        // component does not move as a whole.
+        const double beta = std::pow(target / now, volume ? 1.0 / 3.0 : 0.5);
+        const Vec3 c = centroid(mesh, component, volume, x);
+        for (int v : component.vertices) x.row(v) = (c + beta * (detail::row(x, v) - c)).transpose();
+        return Restoration::Scale;
+    }
+
+    // Fixed vertices must stay put, so scaling is out: offset the free vertices along their
+    // area-weighted unit normals by a common distance t with measure(t) = target. measure(t) is
+    // a cubic (volume) or a smooth function (area) of t; the secant method finds t to rounding.
+    std::vector<Vec3> normal(x.rows(), Vec3::Zero());
+    for (int f : component.faces) {
+        const Triangle& t = mesh.faces()[f];
+        const Vec3 a = detail::row(x, t[0]), b = detail::row(x, t[1]), c = detail::row(x, t[2]);
+        const Vec3 area_normal = (b - a).cross(c - a);
+        for (int v : t) normal[v] += area_normal;
+    }
+    for (int v : component.vertices) {
+        const double length = normal[v].norm();
+        normal[v] = free[v] && length > 0 ? Vec3(normal[v] / length) : Vec3::Zero();
+    }
+    const std::function<double(double)> residual = [&](double t) {
+        return sign * measure(mesh, component, volume, o,
+                              [&](int v) { return Vec3(detail::row(x, v) + t * normal[v]); }) -
+               target;
+    };
+    const double length_scale = std::pow(now, volume ? 1.0 / 3.0 : 0.5);
+    double t0 = 0, f0 = residual(0);
+    const double h = 1e-6 * length_scale;
+    const double slope = (residual(h) - f0) / h;
+    double t1 = slope != 0 ? -f0 / slope : 0, f1 = residual(t1);
+    const double tolerance = 8 * std::numeric_limits<double>::epsilon() * target;
+    for (int iteration = 0; iteration < 100 && std::abs(f1) > tolerance; ++iteration) {
+        if (f1 == f0) break;
+        const double t2 = t1 - f1 * (t1 - t0) / (f1 - f0);
+        t0 = t1;
+        f0 = f1;
+        t1 = t2;
+        f1 = residual(t1);
+    }
+    if (!std::isfinite(t1) || std::abs(f1) > 1e-12 * target)
+        throw Error(std::string("could not restore the ") + what +
+                    " of a component with fixed vertices by moving its free vertices along "
+                    "their normals; switch volume preservation off or free more vertices");
+    for (int v : component.vertices)
+        if (free[v]) x.row(v) += t1 * normal[v].transpose();
+    return Restoration::NormalOffset;
+}
+
+}  // namespace fairing
