@@ -9,6 +9,10 @@ export FAIRING_CACHE=${FAIRING_CACHE:-$HOME/.cache/filter_implicit_fairing}
 
 # Debian packages the engine, the tests and the tools need.
 packages=(g++ cmake ninja-build pkg-config libeigen3-dev libgtest-dev libgmock-dev)
+# MeshLab 2020.09 plugin (Debian 12's meshlab), its headless runs and integration tests
+# (python3 test helpers; xdotool, imagemagick and tesseract drive and read the GUI under Xvfb).
+packages+=(meshlab qtbase5-dev libqt5opengl5-dev libglew-dev dpkg-dev xz-utils python3
+           xvfb xauth xdotool imagemagick tesseract-ocr tesseract-ocr-eng)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -20,5 +24,9 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
-cmake -S "$root" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
+# MeshLab 2020.09 headers (Debian source package, pinned) into the cache; prints its directory.
+meshlab_2020_source=$("$root/scripts/meshlab-2020-sdk.sh")
+
+cmake -S "$root" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DMESHLAB_2020_SOURCE="$meshlab_2020_source" "$@" >/dev/null
 cmake --build "$build_dir" -j2

@@ -164,7 +164,9 @@ void Run::integrate(const SparseOperator& op, const std::vector<char>& free, dou
         Positions lx, llx;
         op.apply_l(x_, lx);
         double sign = 1;
-        if (options_.order == 2) {  // X' = (I - lambda_dt L^2) X
+        if (options_.order == 2) {  // X' = (I - lambda_dt L P L) X, L = 0 at fixed vertices
+            for (int i = 0; i < n; ++i)
+                if (!free[i]) lx.row(i).setZero();
             op.apply_l(lx, llx);
             lx.swap(llx);
             sign = -1;
@@ -263,8 +265,10 @@ Result Run::run() {
 
     const double mean_edge = mean_edge_length(he_, x_);
     const bool has_units = options_.op != Operator::Umbrella && !options_.normalized;
-    const double lambda_dt = options_.time_step * (has_units ? mean_edge * mean_edge : 1.0);
-    const double curve_lambda_dt = options_.time_step * mean_edge * mean_edge;
+    // L is in 1/length^2 (L^2 in 1/length^4) for all but the dimensionless operators.
+    const double length_unit = std::pow(mean_edge, 2 * options_.order);
+    const double lambda_dt = options_.time_step * (has_units ? length_unit : 1.0);
+    const double curve_lambda_dt = options_.time_step * length_unit;
     result_.lambda_dt = lambda_dt;
 
     // Who may move, in the surface system and in the restoration.

@@ -12,9 +12,11 @@
 //   (M/w - lambda_dt K) X' = (M/w) X (eq. 9 multiplied by M; w = soft-constraint weights), or
 //   for the second order (M/w + lambda_dt K M^-1 K) X' = (M/w) X (section 2.6).
 // - The time step given by the user is dimensionless. For the scale-dependent umbrella and the
-//   curvature flow (L in 1/length^2) the absolute lambda_dt is time_step * (mean edge length)^2,
-//   so the same settings work whatever the mesh's units; for the umbrella and the normalized
-//   operators (L dimensionless) lambda_dt = time_step. Result::lambda_dt reports the value used.
+//   curvature flow (L in 1/length^2, L^2 in 1/length^4) the absolute lambda_dt is
+//   time_step * (mean edge length)^(2 order), so the same settings work whatever the mesh's
+//   units; for the umbrella and the normalized operators (L dimensionless) lambda_dt =
+//   time_step. The boundary curve (eq. 11 on the loop) is scaled like the scale-dependent
+//   operator. Result::lambda_dt reports the value used.
 // - fair() throws fairing::Error on refusal (bad input, failed solve, non-finite values); the
 //   caller's data is untouched because it only ever receives positions from a finished run.
 #pragma once

@@ -2,11 +2,12 @@
 // implicit fairing (Appendix A, with CG in place of BiCG since the system is symmetric):
 //
 //   order 1:  A = D - lambda_dt K              (eq. 9 multiplied by M)
-//   order 2:  A = D + lambda_dt K M^-1 K       (section 2.6 multiplied by M), applied matrix-free
+//   order 2:  A = D + lambda_dt K P M^-1 K     (section 2.6 multiplied by M), applied matrix-free
 //
 // with D_i = M_i / w_i (soft constraints, section 2.7). Rows with free[i] == 0 are hard
-// constraints: x_i keeps its value, its terms move to the right-hand side, and the system on the
-// free rows stays SPD. x, y and z are advanced together (one sweep over K serves all three), each
+// constraints: x_i keeps its value, L(x_i) = 0 there as the paper imposes (P zeroes those rows,
+// so L^2 = L P L), their terms move to the right-hand side, and the system on the free rows stays
+// SPD. x, y and z are advanced together (one sweep over K serves all three), each
 // with its own CG coefficients.
 #pragma once
 

@@ -1,0 +1,294 @@
+// Filter logic of the implicit fairing plugin. No numerics here (the engine in fairing/ does
+// them) and no MeshLab API differences (meshlab_api.h maps them): this file builds the parameter
+// list, translates parameters into fairing::Options, runs the adapters and the engine, and logs.
+#include "filter_implicit_fairing.h"
+
+#include "filter_parameters.h"
+
+#include <fairing/fairing.h>
+#include <vcg_adapters/vcg_adapters.h>
+
+#include <QElapsedTimer>
+#include <QStringList>
+
+#include <algorithm>
+#include <thread>
+
+namespace {
+
+using namespace filter_parameters;
+
+QStringList labels(const std::vector<std::string>& v)
+{
+    QStringList out;
+    for (const std::string& s : v) out << QString::fromStdString(s);
+    return out;
+}
+
+fairing::Operator operatorOf(fairing_plugin::FilterId id)
+{
+    switch (id) {
+    case FilterImplicitFairing::FP_UMBRELLA: return fairing::Operator::Umbrella;
+    case FilterImplicitFairing::FP_SCALE_DEPENDENT: return fairing::Operator::ScaleDependent;
+    default: return fairing::Operator::CurvatureFlow;
+    }
+}
+
+QString num(double x) { return QString::number(x, 'g', 6); }
+
+}  // namespace
+
+FilterImplicitFairing::FilterImplicitFairing()
+{
+    registerFilters({FP_UMBRELLA, FP_SCALE_DEPENDENT, FP_CURVATURE_FLOW});
+}
+
+QString FilterImplicitFairing::pluginName() const { return "FilterImplicitFairing"; }
+
+QString FilterImplicitFairing::filterName(fairing_plugin::FilterId id) const
+{
+    switch (id) {
+    case FP_UMBRELLA: return QStringLiteral("Implicit Fairing: Umbrella Diffusion");
+    case FP_SCALE_DEPENDENT: return QStringLiteral("Implicit Fairing: Scale-Dependent Diffusion");
+    case FP_CURVATURE_FLOW: return QStringLiteral("Implicit Fairing: Curvature Flow");
+    }
+    return QString();
+}
+
+QString FilterImplicitFairing::pythonNameOf(fairing_plugin::FilterId id) const
+{
+    switch (id) {
+    case FP_UMBRELLA: return QStringLiteral("apply_coord_implicit_fairing_umbrella");
+    case FP_SCALE_DEPENDENT: return QStringLiteral("apply_coord_implicit_fairing_scale_dependent");
+    case FP_CURVATURE_FLOW: return QStringLiteral("apply_coord_implicit_fairing_curvature_flow");
+    }
+    return QString();
+}
+
+QString FilterImplicitFairing::filterInfo(fairing_plugin::FilterId id) const
+{
+    QString what;
+    switch (id) {
+    case FP_UMBRELLA:
+        what = tr("Diffusion with the <b>umbrella operator</b> (eq. 7): each vertex moves towards "
+                  "the average of its neighbours. Strong fairing changes the shape most, as "
+                  "triangles drift and even out in size: it also regularizes the triangulation. "
+                  "Good for noisy scans.");
+        break;
+    case FP_SCALE_DEPENDENT:
+        what = tr("Diffusion with the <b>scale-dependent umbrella operator</b> (Fujiwara, eq. 11; "
+                  "neighbours weighted by 1/edge length): stays closer to the original shape and "
+                  "almost keeps the triangle sizes. For irregular meshes.");
+        break;
+    case FP_CURVATURE_FLOW:
+        what = tr("<b>Curvature flow</b> (eq. 14, cotangent weights): vertices move along the "
+                  "normal by the mean curvature, so they do not slide over the surface and "
+                  "spheres stay spheres. Use it when only the shape should change.");
+        break;
+    }
+    return what + tr(
+        "<br>Implicit steps (I - &lambda;dt L) X' = X, or (I + &lambda;dt L&sup2;) X' = X, solved in "
+        "symmetric form by Jacobi-preconditioned conjugate gradients: stable for any time step. "
+        "On failure the mesh is left untouched.<br>"
+        "<b>Time step</b>: strength of each step, relative to the mean edge length so it works in "
+        "any unit (the absolute &lambda;dt is logged). "
+        "<b>Smoothing steps</b>: number of steps; smaller steps follow the shape more closely. "
+        "<b>Operator order</b>: L&sup2; (section 2.6) removes noise more sharply than L and keeps "
+        "larger features. "
+        "<b>Integration</b>: implicit is stable for any step; explicit is for comparison only. "
+        "<b>Preserve volume</b>: rescales each closed component to its initial volume after each "
+        "step (section 3). "
+        "<b>Open components</b>: keep nothing or the surface area of components with a boundary. "
+        "<b>Boundary</b>: fixed, faired as a curve, or moved through a virtual vertex per hole "
+        "(section 5.3). "
+        "<b>Use vertex quality as smoothing weight</b>: quality in [0,1] scales the smoothing "
+        "per vertex, 0 fixes it (section 2.7). "
+        "<b>Invert quality weight</b>: uses 1 - quality. "
+        "<b>Affect only selection</b>: unselected vertices stay exactly where they are. "
+        "<b>Solver tolerance</b>: stop when |AX-b|/|b| is below it. "
+        "<b>Max solver iterations</b>: cap per solve. "
+        "<b>Freeze operator</b>: keep the first step's weights for all steps (section 4.3). "
+        "<b>Accept unconverged solves</b>: keep the last iterate with a warning instead of "
+        "failing.<br>"
+        "See: <i>M. Desbrun, M. Meyer, P. Schr&ouml;der, A. H. Barr</i>, <b>\"Implicit Fairing "
+        "of Irregular Meshes using Diffusion and Curvature Flow\"</b>, SIGGRAPH 99, 317-324.");
+}
+
+FilterImplicitFairing::FilterClass FilterImplicitFairing::classOf(fairing_plugin::FilterId) const
+{
+    return Interface::Smoothing;
+}
+
+int FilterImplicitFairing::preConditionsOf(fairing_plugin::FilterId) const
+{
+    return MeshModel::MM_FACENUMBER;
+}
+
+int FilterImplicitFairing::postConditionOf(fairing_plugin::FilterId) const
+{
+    return MeshModel::MM_VERTCOORD | MeshModel::MM_VERTNORMAL | MeshModel::MM_FACENORMAL;
+}
+
+void FilterImplicitFairing::initParameters(fairing_plugin::FilterId id, const MeshModel* current,
+                                           RichParameterList& par)
+{
+    const bool selection = current != nullptr && vcg_adapters::hasSelection(current->cm);
+    const Values d = defaults(operatorOf(id));
+    par.addParam(RichFloat(kTimeStep, static_cast<float>(d.timeStep), tr("Time step (dimensionless)"),
+        tr("Strength of each step (the paper's lambda*dt) independent of the mesh's units: the "
+           "scale-dependent and curvature operators multiply it by the power of the mean edge "
+           "length their units need, so the same value works in millimetres and metres. The "
+           "default removes noise of about one edge length; larger values smooth more. The "
+           "absolute value used is logged.")));
+    par.addParam(RichInt(kSteps, d.steps, tr("Smoothing steps"),
+        tr("Number of implicit steps; each one applies the time step again.")));
+    par.addParam(RichEnum(kOrder, d.order, labels(orderLabels()), tr("Operator order"),
+        tr("L: diffusion/flow with the operator itself. L²: with the squared operator "
+           "(section 2.6), a much sharper low-pass filter: removes noise, keeps shape.")));
+    par.addParam(RichEnum(kIntegration, d.integration, labels(integrationLabels()),
+        tr("Integration"),
+        tr("Implicit (backward Euler) is stable for any time step. Explicit (forward Euler) is "
+           "for comparison and unstable for large time steps (a warning says when); its "
+           "normalized variant uses the operators of section 5.5, stable up to a time step of "
+           "about 1.")));
+    par.addParam(RichBool(kPreserveVolume, d.preserveVolume, tr("Preserve volume"),
+        tr("After each step, restore the initial volume of every closed component (scaling "
+           "about its centroid, or offsetting free vertices along their normals when some "
+           "vertices are fixed).")));
+    par.addParam(RichEnum(kOpenInvariant, d.openInvariant, labels(openInvariantLabels()), tr("Open components"),
+        tr("Components with a boundary enclose no volume: keep nothing, or keep their surface "
+           "area.")));
+    par.addParam(RichEnum(kBoundaryMode, d.boundaryMode, labels(boundaryModeLabels()), tr("Boundary"),
+        tr("Fixed: boundary vertices do not move. Smooth boundary curve: each boundary loop is "
+           "faired as a curve first, then the interior. Virtual vertex: a hidden vertex at the "
+           "centre of each hole lets the boundary move with the surface.")));
+    par.addParam(RichBool(kQualityWeights, d.qualityWeights, tr("Use vertex quality as smoothing weight"),
+        tr("Per-vertex quality, clamped to [0,1], scales the smoothing at each vertex; 0 keeps "
+           "the vertex fixed, 1 smooths fully. Needs a mesh with vertex quality.")));
+    par.addParam(RichBool(kInvertQuality, d.invertQuality, tr("Invert quality weight"),
+        tr("Use 1 - quality as the weight: high quality means little smoothing.")));
+    par.addParam(RichBool(kSelected, selection, tr("Affect only selection"),
+        tr("If checked, only the selected vertices move (for a face selection: vertices whose "
+           "faces are all selected); every other vertex stays exactly where it is.")));
+    par.addParam(RichFloat(kTolerance, static_cast<float>(d.tolerance), tr("Solver tolerance"),
+        tr("The conjugate gradient stops when the relative residual |AX-b|/|b| is below this.")));
+    par.addParam(RichInt(kMaxIterations, d.maxIterations, tr("Max solver iterations"),
+        tr("Iteration cap of each linear solve.")));
+    par.addParam(RichBool(kFreezeOperator, d.freezeOperator, tr("Freeze operator"),
+        tr("Keep the operator's weights of the first step for all steps (smoothing relative to "
+           "the initial mesh, section 4.3) instead of recomputing them at each step.")));
+    par.addParam(RichBool(kAcceptUnconverged, d.acceptUnconverged, tr("Accept unconverged solves"),
+        tr("When a solve hits the iteration cap, keep its last iterate with a warning instead "
+           "of failing and leaving the mesh unchanged.")));
+}
+
+void FilterImplicitFairing::apply(fairing_plugin::FilterId id, MeshModel& m,
+                                  const RichParameterList& par, vcg::CallBackPos* cb)
+{
+    QElapsedTimer timer;
+    timer.start();
+
+    Values v;
+    v.timeStep = static_cast<double>(par.getFloat(kTimeStep));
+    v.steps = par.getInt(kSteps);
+    v.order = par.getEnum(kOrder);
+    v.integration = par.getEnum(kIntegration);
+    v.preserveVolume = par.getBool(kPreserveVolume);
+    v.openInvariant = par.getEnum(kOpenInvariant);
+    v.boundaryMode = par.getEnum(kBoundaryMode);
+    v.qualityWeights = par.getBool(kQualityWeights);
+    v.invertQuality = par.getBool(kInvertQuality);
+    v.selected = par.getBool(kSelected);
+    v.tolerance = static_cast<double>(par.getFloat(kTolerance));
+    v.maxIterations = par.getInt(kMaxIterations);
+    v.freezeOperator = par.getBool(kFreezeOperator);
+    v.acceptUnconverged = par.getBool(kAcceptUnconverged);
+    fairing::Options o = toOptions(operatorOf(id), v);
+
+    // Progress: only from the thread that called applyFilter, only when the percentage changes.
+    const std::thread::id caller = std::this_thread::get_id();
+    int lastPercent = -1;
+    if (cb != nullptr) {
+        o.progress = [cb, caller, &lastPercent](double f) {
+            if (std::this_thread::get_id() != caller) return;
+            const int p = std::max(0, std::min(100, static_cast<int>(f * 100.0)));
+            if (p == lastPercent) return;
+            lastPercent = p;
+            cb(p, "Implicit fairing");
+        };
+    }
+
+    vcg_adapters::ConstraintSettings cs;
+    cs.onlySelected = v.selected;
+    cs.qualityWeights = v.qualityWeights;
+    cs.invertQuality = v.invertQuality;
+    cs.qualityMeaningful = m.hasDataMask(MeshModel::MM_VERTQUALITY);
+
+    // Everything that can fail runs before the mesh is written.
+    vcg_adapters::IndexMap map;
+    const fairing::TriangleMesh tm = vcg_adapters::toTriangleMesh(m.cm, map);
+    vcg_adapters::ConstraintReport crep;
+    const fairing::Constraints constraints = vcg_adapters::makeConstraints(m.cm, map, cs, &crep);
+    const fairing::Result r = fairing::fair(tm, constraints, o);
+    vcg_adapters::writePositions(m.cm, map, r.positions);   // checks first, then writes
+    updateBoxAndNormals(m);
+    if (cb != nullptr) cb(100, "Implicit fairing done");
+
+    // ---- log -----------------------------------------------------------------------------------
+    logLine(QString("%1: %2 operator, %3, %4 integration")
+                .arg(filterName(id))
+                .arg(fairing::to_string(o.op))
+                .arg(o.order == 2 ? QString::fromUtf8("L²") : QString("L"))
+                .arg(QString::fromStdString(integrationLabels()[v.integration]).toLower()));
+    logLine(QString("Vertices moved: %1 of %2; fixed: %3")
+                .arg(r.vertices_moved).arg(tm.positions.rows()).arg(r.vertices_fixed));
+    if (cs.onlySelected)
+        logLine(QString("Affect only selection: %1 vertices free from the %2, %3 fixed")
+                    .arg(crep.movable).arg(QString::fromStdString(crep.selectionSource))
+                    .arg(crep.fixedBySelection));
+    if (cs.qualityWeights)
+        logLine(QString("Quality weights%1: %2 vertices with weight 0, %3 quality values "
+                        "clamped to [0,1]")
+                    .arg(cs.invertQuality ? " (inverted)" : "")
+                    .arg(crep.zeroWeights).arg(crep.qualityClamped));
+    logLine(QString::fromUtf8("Steps: %1; absolute λdt per step: %2 (time step %3)")
+                .arg(r.steps).arg(num(r.lambda_dt)).arg(num(o.time_step)));
+    for (const fairing::SolveReport& s : r.solves)
+        logLine(QString("  step %1, %2: %3 CG iterations, residual %4%5")
+                    .arg(s.step).arg(QString::fromStdString(s.system)).arg(s.iterations)
+                    .arg(num(s.residual)).arg(s.converged ? "" : " (NOT converged)"));
+    logLine(QString("CG iterations in total: %1; largest final residual: %2")
+                .arg(r.total_iterations).arg(num(r.max_residual)));
+    logLine(QString("Volume of closed components: before %1, after %2")
+                .arg(num(r.volume_before)).arg(num(r.volume_after)));
+    logLine(QString("Boundary: %1 (%2 boundary loops); volume preservation %3")
+                .arg(fairing::to_string(o.boundary)).arg(r.boundary_loops)
+                .arg(o.preserve_volume ? "on" : "off"));
+    const std::size_t shown = std::min<std::size_t>(r.components.size(), 20);
+    for (std::size_t i = 0; i < shown; ++i) {
+        const fairing::ComponentReport& c = r.components[i];
+        logLine(QString("  component %1: %2 faces, %3%4; %5; %6 %7 -> %8")
+                    .arg(i).arg(c.faces).arg(c.closed ? "closed" : "open")
+                    .arg(c.has_fixed ? ", has fixed vertices" : "")
+                    .arg(fairing::to_string(c.restoration))
+                    .arg(c.closed ? "volume" : "area")
+                    .arg(num(c.measure_before)).arg(num(c.measure_after)));
+    }
+    if (r.components.size() > shown)
+        logLine(QString("  ... and %1 more components").arg(r.components.size() - shown));
+    if (r.isolated_vertices > 0)
+        logLine(QString("Warning: %1 isolated vertices left out").arg(r.isolated_vertices));
+    if (r.zero_area_faces > 0)
+        logLine(QString("Warning: %1 zero-area faces contribute nothing").arg(r.zero_area_faces));
+    if (r.dropped_faces > 0)
+        logLine(QString("Warning: %1 faces repeating a vertex left out").arg(r.dropped_faces));
+    if (r.inconsistent_edges > 0)
+        logLine(QString("Warning: %1 edges with inconsistent face orientation")
+                    .arg(r.inconsistent_edges));
+    for (const std::string& w : r.warnings)
+        logLine(QString("Warning: %1").arg(QString::fromStdString(w)));
+    logLine(QString("Time: %1 s in the engine, %2 s in total")
+                .arg(num(r.seconds)).arg(num(timer.elapsed() / 1000.0)));
+}
+
+MESHLAB_PLUGIN_NAME_EXPORTER(FilterImplicitFairing)

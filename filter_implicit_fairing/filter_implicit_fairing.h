@@ -1,0 +1,31 @@
+// MeshLab filter plugin: implicit fairing of irregular meshes (Desbrun, Meyer, Schroeder, Barr,
+// SIGGRAPH 1999). Three filters, one per operator of the paper, in
+// Filters > Smoothing, Fairing and Deformation. The filter logic here is API-neutral; the
+// MeshLab API (2020.09 MeshFilterInterface or 2025.07 FilterPlugin) is mapped in meshlab_api.h.
+#pragma once
+
+#include "meshlab_api.h"
+
+class FilterImplicitFairing : public fairing_plugin::FilterBase {
+    Q_OBJECT
+    MESHLAB_PLUGIN_IID_EXPORTER(FAIRING_FILTER_IID)
+    Q_INTERFACES(FAIRING_FILTER_INTERFACE)
+
+public:
+    enum { FP_UMBRELLA, FP_SCALE_DEPENDENT, FP_CURVATURE_FLOW };
+
+    FilterImplicitFairing();
+
+    QString pluginName() const override;
+    QString filterName(fairing_plugin::FilterId id) const override;
+    QString filterInfo(fairing_plugin::FilterId id) const override;
+
+    FilterClass classOf(fairing_plugin::FilterId id) const override;
+    int preConditionsOf(fairing_plugin::FilterId id) const override;
+    int postConditionOf(fairing_plugin::FilterId id) const override;
+    QString pythonNameOf(fairing_plugin::FilterId id) const override;
+    void initParameters(fairing_plugin::FilterId id, const MeshModel* current,
+                        RichParameterList& par) override;
+    void apply(fairing_plugin::FilterId id, MeshModel& m, const RichParameterList& par,
+               vcg::CallBackPos* cb) override;
+};
