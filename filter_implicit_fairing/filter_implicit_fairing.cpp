@@ -182,8 +182,9 @@ void FilterImplicitFairing::initParameters(fairing_plugin::FilterId id, const Me
            "of failing and leaving the mesh unchanged.")));
 }
 
-void FilterImplicitFairing::apply(fairing_plugin::FilterId id, MeshModel& m,
-                                  const RichParameterList& par, vcg::CallBackPos* cb)
+fairing_plugin::RunFigures FilterImplicitFairing::apply(fairing_plugin::FilterId id, MeshModel& m,
+                                                        const RichParameterList& par,
+                                                        vcg::CallBackPos* cb)
 {
     QElapsedTimer timer;
     timer.start();
@@ -287,8 +288,23 @@ void FilterImplicitFairing::apply(fairing_plugin::FilterId id, MeshModel& m,
                     .arg(r.inconsistent_edges));
     for (const std::string& w : r.warnings)
         logLine(QString("Warning: %1").arg(QString::fromStdString(w)));
+    const double seconds = timer.elapsed() / 1000.0;
     logLine(QString("Time: %1 s in the engine, %2 s in total")
-                .arg(num(r.seconds)).arg(num(timer.elapsed() / 1000.0)));
+                .arg(num(r.seconds)).arg(num(seconds)));
+
+    // ---- the run's figures (pymeshlab returns them as a dict) ---------------------------------
+    fairing_plugin::RunFigures figures;
+    figures.counts = {{"steps", r.steps},
+                      {"iterations", r.total_iterations},
+                      {"vertices_moved", r.vertices_moved},
+                      {"vertices_fixed", r.vertices_fixed}};
+    figures.values = {{"residual", r.max_residual},
+                      {"volume_before", r.volume_before},
+                      {"volume_after", r.volume_after},
+                      {"lambda_dt", r.lambda_dt},
+                      {"engine_seconds", r.seconds},
+                      {"seconds", seconds}};
+    return figures;
 }
 
 MESHLAB_PLUGIN_NAME_EXPORTER(FilterImplicitFairing)

@@ -26,6 +26,7 @@ public:
     QString pythonNameOf(fairing_plugin::FilterId id) const override;
     void initParameters(fairing_plugin::FilterId id, const MeshModel* current,
                         RichParameterList& par) override;
-    void apply(fairing_plugin::FilterId id, MeshModel& m, const RichParameterList& par,
-               vcg::CallBackPos* cb) override;
+    fairing_plugin::RunFigures apply(fairing_plugin::FilterId id, MeshModel& m,
+                                     const RichParameterList& par,
+                                     vcg::CallBackPos* cb) override;
 };

@@ -10,7 +10,7 @@
 // Differences handled here: base class, IID and Q_INTERFACES name, method signatures
 // (QAction* vs const QAction*, const-ness, applyFilter's return type), error mapping
 // (errorMessage + false vs MLException), Log vs log, UpdateBoxAndNormals vs
-// updateBoxAndNormals, python names (new API only).
+// updateBoxAndNormals, python names and the output map of a run's figures (new API only).
 #pragma once
 
 #include <QAction>
@@ -19,6 +19,8 @@
 
 #include <exception>
 #include <initializer_list>
+#include <map>
+#include <stdexcept>
 #include <string>
 
 #if !defined(FAIRING_MESHLAB_API)
@@ -42,6 +44,14 @@ namespace fairing_plugin {
 
 using FilterId = int;   // FilterIDType (2020) and ActionIDType (2025) are both int
 
+// What one run did, returned by apply(): integer counts and real values by name. The 2025 shim
+// returns them as applyFilter's output map (pymeshlab hands it to Python as a dict, ints as int,
+// values as float); the 2020 API has no output map and ignores them.
+struct RunFigures {
+    std::map<std::string, int> counts;
+    std::map<std::string, double> values;
+};
+
 class FilterBase : public QObject, public FAIRING_FILTER_INTERFACE {
 public:
     using Interface = FAIRING_FILTER_INTERFACE;
@@ -56,8 +66,8 @@ public:
     // current: the current mesh or nullptr.
     virtual void initParameters(FilterId id, const MeshModel* current, RichParameterList& par) = 0;
     // Throws std::exception (fairing::Error) on failure; must leave the mesh untouched then.
-    virtual void apply(FilterId id, MeshModel& m, const RichParameterList& par,
-                       vcg::CallBackPos* cb) = 0;
+    virtual RunFigures apply(FilterId id, MeshModel& m, const RichParameterList& par,
+                             vcg::CallBackPos* cb) = 0;
 
 protected:
     void registerFilters(std::initializer_list<FilterId> ids)
@@ -94,7 +104,7 @@ public:
         try {
             MeshModel* m = md.mm();
             if (m == nullptr) throw std::runtime_error("no current mesh");
-            apply(ID(a), *m, par, cb);
+            apply(ID(a), *m, par, cb);   // no output map in this API: the figures are in the log
             return true;
         } catch (const std::exception& e) {
             errorMessage = QString::fromUtf8(e.what());
@@ -122,21 +132,29 @@ public:
         initParameters(ID(a), md.mm(), par);
         return par;
     }
+    // Errors reach the host as MLException (pymeshlab raises PyMeshLabException with its text);
+    // the figures of the run come back as the output map (a dict in pymeshlab).
     std::map<std::string, QVariant> applyFilter(const QAction* a, const RichParameterList& par,
                                                 MeshDocument& md, unsigned int& postConditionMask,
                                                 vcg::CallBackPos* cb) override
     {
         MeshModel* m = md.mm();
         if (m == nullptr) throw MLException("no current mesh");
+        RunFigures figures;
         try {
-            apply(ID(a), *m, par, cb);
+            figures = apply(ID(a), *m, par, cb);
         } catch (const MLException&) {
             throw;
         } catch (const std::exception& e) {
             throw MLException(QString::fromUtf8(e.what()));
+        } catch (...) {
+            throw MLException(QStringLiteral("unknown internal error"));
         }
         postConditionMask = static_cast<unsigned int>(postConditionOf(ID(a)));
-        return {};
+        std::map<std::string, QVariant> out;
+        for (const auto& c : figures.counts) out[c.first] = QVariant(c.second);
+        for (const auto& v : figures.values) out[v.first] = QVariant(v.second);
+        return out;
     }
 
 private:

@@ -151,9 +151,11 @@ def main(argv):
         return 0
     if len(argv) == 2 and argv[0] == "measure":
         verts, faces = read_ply(argv[1])
-        clean_edge = mean_edge(torus(SEED)[0], faces)
-        rms = math.sqrt(sum(torus_distance(p) ** 2 for p in verts) / len(verts))
-        print("%.6f %.9g" % (rms / clean_edge, volume(verts, faces)))
+        rms = float("nan")  # only the generated torus has a known clean surface
+        if len(verts) == NU * NV:
+            clean_edge = mean_edge(torus(SEED)[0], faces)
+            rms = math.sqrt(sum(torus_distance(p) ** 2 for p in verts) / len(verts)) / clean_edge
+        print("%.6f %.9g" % (rms, volume(verts, faces)))
         return 0
     sys.stderr.write(__doc__)
     return 2

@@ -132,6 +132,13 @@ private:
                    int step, const char* system);
     void restore();
     void warn(const std::string& w) { result_.warnings.push_back(w); }
+    // The CG-based estimate may go back when the residual rises; the user sees it only advance.
+    void report_progress(double fraction) {
+        if (options_.progress && fraction > progress_) {
+            progress_ = fraction;
+            options_.progress(fraction);
+        }
+    }
 
     const TriangleMesh& mesh_;
     const Options& options_;
@@ -146,6 +153,7 @@ private:
     Positions x_;                   // centred working positions (plus virtual vertices)
     Result result_;
     bool warned_stability_ = false;
+    double progress_ = 0;
 };
 
 void Run::integrate(const SparseOperator& op, const std::vector<char>& free, double lambda_dt,
@@ -192,6 +200,12 @@ void Run::integrate(const SparseOperator& op, const std::vector<char>& free, dou
     settings.tolerance = options_.tolerance;
     settings.norm = options_.norm;
     settings.max_iterations = options_.max_iterations;
+    if (options_.progress) {
+        const double steps = std::max(1, options_.steps);
+        settings.progress = [&](double f) {
+            report_progress(std::min(1.0, (step + std::min(1.0, f)) / steps));
+        };
+    }
     const SolveStats stats = solve(linear, x_, settings);
 
     SolveReport report;
@@ -344,7 +358,7 @@ Result Run::run() {
                         "explicit integration, use a smaller time step)");
         restore();
         ++result_.steps;
-        if (options_.progress) options_.progress(static_cast<double>(step + 1) / steps);
+        report_progress(static_cast<double>(step + 1) / steps);
     }
 
     // Vertices that may not move keep their input coordinates bit for bit.

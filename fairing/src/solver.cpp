@@ -122,6 +122,18 @@ SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& 
                         "operator, or repair the mesh first)");
     };
 
+    Column3 initial{0, 0, 0};
+    bool have_initial = false;
+    auto fraction_done = [&](const Column3& now) {
+        double worst = 1;
+        for (int c = 0; c < 3; ++c) {
+            const double goal = settings.tolerance * scale[c];
+            if (!(now[c] > goal) || !(initial[c] > goal)) continue;
+            worst = std::min(worst, std::log(initial[c] / now[c]) / std::log(initial[c] / goal));
+        }
+        return std::max(0.0, worst);
+    };
+
     // CG's recursively updated residual drifts from the true one on ill-conditioned systems (the
     // L^2 forms), so convergence is confirmed on the true residual, restarting from the current
     // iterate when it disagrees.
@@ -137,6 +149,10 @@ SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& 
         for (int c = 0; c < 3; ++c) {
             check_finite(rn[c], stats.iterations);
             active[c] = !converged_column(rn, c);
+        }
+        if (!have_initial) {
+            initial = rn;
+            have_initial = true;
         }
         if (!(active[0] || active[1] || active[2]) || restart == kMaxRestarts ||
             stats.iterations >= settings.max_iterations)
@@ -172,6 +188,7 @@ SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& 
                 check_finite(rn[c], stats.iterations);
                 if (active[c] && converged_column(rn, c)) active[c] = false;
             }
+            if (settings.progress) settings.progress(fraction_done(rn));
             if (!(active[0] || active[1] || active[2])) break;
             precondition(r, z);
             const Column3 rz_new = column_dots(r, z, free);

@@ -1,13 +1,17 @@
-// Reference for the MeshLab 2020.09 integration tests: runs the engine directly on a PLY file,
-// through the same vcg adapters but without MeshLab, Qt or the plugin's parameter handling.
+// Reference for the MeshLab 2020.09 and 2025.07 integration tests: runs the engine directly on a
+// PLY file, through the same vcg adapters but without MeshLab, Qt or the plugin's parameter
+// handling.
 //
 //   engine_reference IN.ply OUT.ply umbrella|scale_dependent|curvature_flow
 //                    [--select-x-gt V] [name=value ...]
 //
 // name=value are the plugin's parameter names (the same list the test writes into the .mlx);
-// floats are parsed as float first, as MeshLab stores them. --select-x-gt V selects the vertices
-// with x > V before running (what the stock "Conditional Vertex Selection" with "x > V" does).
-// The mesh type mirrors CMeshO where it matters: float coordinates, per-vertex quality and flags.
+// floats are parsed as float first, as MeshLab 2020.09 stores them and pymeshlab converts them.
+// --select-x-gt V selects the vertices with x > V before running (what the stock "Conditional
+// Vertex Selection" with "x > V" does).
+// The mesh type mirrors CMeshO where it matters: coordinates, per-vertex quality and flags of
+// MeshLab's scalar, float by default; built with ENGINE_REFERENCE_DOUBLE it mirrors the CMeshO of
+// a double-precision MeshLab (MESHLAB_SCALAR=double, as pymeshlab is built).
 #include <fairing/fairing.h>
 #include <filter_parameters.h>
 #include <vcg_adapters/vcg_adapters.h>
@@ -28,10 +32,18 @@ class RVertex;
 class RFace;
 struct RUsedTypes : public vcg::UsedTypes<vcg::Use<RVertex>::AsVertexType,
                                           vcg::Use<RFace>::AsFaceType> {};
-class RVertex : public vcg::Vertex<RUsedTypes, vcg::vertex::Coord3f, vcg::vertex::Normal3f,
-                                   vcg::vertex::Qualityf, vcg::vertex::BitFlags> {};
-class RFace : public vcg::Face<RUsedTypes, vcg::face::VertexRef, vcg::face::Normal3f,
+// R(Coord3) is vcg's Coord3f, or Coord3d with ENGINE_REFERENCE_DOUBLE.
+#if defined(ENGINE_REFERENCE_DOUBLE)
+#define R(component) component##d
+#else
+#define R(component) component##f
+#endif
+class RVertex : public vcg::Vertex<RUsedTypes, vcg::vertex::R(Coord3), vcg::vertex::R(Normal3),
+                                   vcg::vertex::R(Quality), vcg::vertex::BitFlags> {};
+class RFace : public vcg::Face<RUsedTypes, vcg::face::VertexRef, vcg::face::R(Normal3),
                                vcg::face::BitFlags> {};
+#undef R
+using RScalar = RVertex::ScalarType;
 class RMesh : public vcg::tri::TriMesh<std::vector<RVertex>, std::vector<RFace>> {};
 
 [[noreturn]] void usage(const char* msg)
@@ -57,12 +69,12 @@ int main(int argc, char** argv)
     using namespace filter_parameters;
     Values v = defaults(op);
     bool select = false;
-    float selectX = 0;
+    RScalar selectX = 0;
     for (int i = 4; i < argc; ++i) {
         const std::string a = argv[i];
         if (a == "--select-x-gt" && i + 1 < argc) {
             select = true;
-            selectX = std::stof(argv[++i]);
+            selectX = static_cast<RScalar>(std::stod(argv[++i]));
             continue;
         }
         const auto eq = a.find('=');

@@ -14,6 +14,7 @@
 #include "fairing/fairing.h"
 #include "fairing/operators.h"
 
+#include <functional>
 #include <vector>
 
 namespace fairing {
@@ -41,6 +42,9 @@ struct SolveSettings {
     double tolerance = 1e-10;
     ResidualNorm norm = ResidualNorm::L2;
     int max_iterations = 2000;
+    // Called after each iteration with an estimate of the fraction done in [0, 1]: how far the
+    // residual has come down, on a log scale, from where it started to the tolerance.
+    std::function<void(double)> progress;
 };
 
 // Solves A x = D x_old on the free rows; x holds x_old on entry (warm start, and the fixed

@@ -1,0 +1,159 @@
+#!/usr/bin/env bash
+# One MeshLab 2025.07 integration test (registered in CTest by CMakeLists.txt, label meshlab2025):
+# the plugin run the way pymeshlab 2025.7 runs it, by pymeshlab_host (no Python, no display).
+#   run_test.sh list                      python names, types and defaults of every parameter
+#   run_test.sh run FILTER MESH[+QUALITY] [python_name=value ...]
+#       generated noisy MESH (mltest.py gen MESH --quality QUALITY) -> host (load through
+#       io_base, apply_filter with the keyword arguments, save) -> compared with engine_reference
+#       run on the same file with the parameter values the filter received; the returned
+#       figures match the reference's. SELECT_X_GT=V in the environment selects x > V first.
+#   run_test.sh quality-fixed FILTER      quality 0 vertices stay bit-identical
+#   run_test.sh selection FILTER          selected x > 0.25, only those move
+#   run_test.sh failure                   non-manifold input: the error comes back, mesh unchanged
+#   run_test.sh reject                    the other precision's binary is refused with the
+#                                         host's message
+# Environment (set by CMake): PREC (float|double), HOST, ENGINE_REFERENCE, PLUGIN, OTHER_PLUGIN,
+# PLUGINS_DIR, WORK_DIR.
+set -euo pipefail
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+mltest() { python3 "$here/../meshlab2020/mltest.py" "$@"; }
+host() { "$HOST" "$PLUGINS_DIR" "$PLUGIN" "$@"; }
+work=${WORK_DIR:?}
+rm -rf "$work"; mkdir -p "$work"; cd "$work"
+
+declare -A PYNAME=(
+    [umbrella]=apply_coord_implicit_fairing_umbrella
+    [scale_dependent]=apply_coord_implicit_fairing_scale_dependent
+    [curvature_flow]=apply_coord_implicit_fairing_curvature_flow)
+
+# the figures returned by apply_filter, checked against the reference's own count
+check_figures() {   # host.log ref.log
+    python3 - "$1" "$2" <<'EOF'
+import math, re, sys
+out = {}
+for line in open(sys.argv[1], encoding="utf-8"):
+    w = line.split()
+    if len(w) == 4 and w[0] == "output":
+        out[w[1]] = (w[2], w[3])
+expect = {"iterations": "int", "steps": "int", "vertices_moved": "int", "vertices_fixed": "int",
+          "residual": "double", "volume_before": "double", "volume_after": "double",
+          "lambda_dt": "double", "seconds": "double", "engine_seconds": "double"}
+for k, t in expect.items():
+    if k not in out:
+        print("FAIL: the output map lacks %s (has %s)" % (k, sorted(out))); sys.exit(1)
+    if out[k][0] != t:
+        print("FAIL: %s is a %s, expected %s" % (k, out[k][0], t)); sys.exit(1)
+    if not math.isfinite(float(out[k][1])):
+        print("FAIL: %s is not finite" % k); sys.exit(1)
+ref = open(sys.argv[2], encoding="utf-8").read()
+m = re.search(r"engine_reference: (\d+) vertices moved, (\d+) fixed, (\d+) CG iterations, "
+              r"lambda_dt (\S+)", ref)
+if not m:
+    print("FAIL: no figures in the reference's output"); sys.exit(1)
+moved, fixed, its, ldt = int(m.group(1)), int(m.group(2)), int(m.group(3)), float(m.group(4))
+got = (int(out["vertices_moved"][1]), int(out["vertices_fixed"][1]), int(out["iterations"][1]))
+if got != (moved, fixed, its):
+    print("FAIL: moved/fixed/iterations %r, reference %r" % (got, (moved, fixed, its))); sys.exit(1)
+if abs(float(out["lambda_dt"][1]) - ldt) > 1e-5 * abs(ldt):
+    print("FAIL: lambda_dt %s, reference %g" % (out["lambda_dt"][1], ldt)); sys.exit(1)
+print("figures: " + ", ".join("%s=%s" % (k, out[k][1]) for k in sorted(expect)))
+EOF
+}
+
+# run FILTER MESH[+QUALITY] [kwargs...]: host vs reference; both select x > $SELECT_X_GT if set
+sel=()
+[ -n "${SELECT_X_GT:-}" ] && sel=(--select-x-gt "$SELECT_X_GT")
+run_case() {
+    local filter=$1 spec=$2; shift 2
+    local quality=none
+    [[ $spec == *+* ]] && quality=${spec#*+}
+    mltest gen "${spec%%+*}" in.ply --quality "$quality"
+    local kw=""
+    [ $# -gt 0 ] && kw=$(printf ", %s" "$@")
+    echo "--- host ($PREC): apply_filter('${PYNAME[$filter]}'$kw)"
+    host apply "$work/in.ply" "$work/out.ply" "${PYNAME[$filter]}" "${sel[@]}" \
+        --params-out "$work/params.txt" "$@" | tee host.log
+    echo "--- parameters the filter received"; cat params.txt
+    echo "--- engine_reference ($PREC)"
+    local params
+    mapfile -t params < params.txt
+    "$ENGINE_REFERENCE" in.ply ref.ply "$filter" "${sel[@]}" "${params[@]}" | tee ref.log
+    mltest compare out.ply ref.ply
+    check_figures host.log ref.log
+}
+
+case ${1:?case} in
+list)
+    host list | tee list.log
+    python3 - list.log <<'EOF'
+import keyword, sys
+lines = open(sys.argv[1], encoding="utf-8").read().splitlines()
+filters = [l.split()[1] for l in lines if l.startswith("filter ")]
+want = ["apply_coord_implicit_fairing_curvature_flow", "apply_coord_implicit_fairing_scale_dependent",
+        "apply_coord_implicit_fairing_umbrella"]
+if sorted(filters) != want:
+    print("FAIL: filters %r" % filters); sys.exit(1)
+types = {"timestep": "float", "stepsmoothnum": "int", "order": "str", "integration": "str",
+         "preservevolume": "bool", "openinvariant": "str", "boundarymode": "str",
+         "qualityweights": "bool", "invertquality": "bool", "selected": "bool",
+         "tolerance": "float", "maxiterations": "int", "freezeoperator": "bool",
+         "acceptunconverged": "bool"}
+current = None
+seen = {}
+for l in lines:
+    w = l.split()
+    if w and w[0] == "filter":
+        current = w[1]; seen[current] = {}
+    elif w and w[0] == "param":
+        name, typ = w[1], w[2]
+        if keyword.iskeyword(name) or keyword.iskeyword(name.rstrip("_")) or name.endswith("_"):
+            print("FAIL: %s: python name %s is (or was mangled from) a keyword" % (current, name)); sys.exit(1)
+        if not name.isidentifier():
+            print("FAIL: %s: %s is not an identifier" % (current, name)); sys.exit(1)
+        seen[current][name] = typ
+for f, params in seen.items():
+    if params != types:
+        print("FAIL: %s parameters %r" % (f, params)); sys.exit(1)
+print("list: 3 filters, each with the 14 parameters %s" % ", ".join(sorted(types)))
+EOF
+    ;;
+run)
+    shift
+    run_case "$@"
+    # quality weights or a selection fix some vertices on purpose
+    if [[ $2 == *+* || ${#sel[@]} -gt 0 ]]; then fraction=0.25; else fraction=0.5; fi
+    mltest moved in.ply out.ply $fraction
+    ;;
+quality-fixed)
+    run_case "$2" grid+halfx qualityweights=True
+    grep -q "vertex quality" host.log || { echo "FAIL: io_base did not load the quality"; exit 1; }
+    mltest fixed in.ply out.ply --quality-zero
+    ;;
+selection)
+    sel=(--select-x-gt 0.25)
+    run_case "$2" sphere selected=True
+    mltest fixed in.ply out.ply --x-le 0.25
+    ;;
+failure)
+    mltest gen nonmanifold in.ply
+    cp in.ply in.orig.ply
+    host apply "$work/in.ply" "$work/out.ply" "${PYNAME[umbrella]}" --expect-failure | tee host.log
+    if ! cmp -s in.ply in.orig.ply || [ -e out.ply ]; then
+        echo "FAIL: the input changed or an output was written"; exit 1
+    fi
+    # pymeshlab's message with the plugin's MLException text; the host compared the mesh
+    for line in "^PyMeshLabException: Failed to apply filter: ${PYNAME[umbrella]}\$" \
+                "^Details: .*non-manifold edge" "^mesh unchanged after the failure"; do
+        grep -q "$line" host.log || { echo "FAIL: no line matching '$line'"; exit 1; }
+    done
+    if grep -q "^output " host.log; then echo "FAIL: figures returned by a failed run"; exit 1; fi
+    ;;
+reject)
+    host reject "$OTHER_PLUGIN" | tee host.log
+    grep -q "^rejected: libfilter_implicit_fairing.so has different floating point precision from the running MeshLab version.$" host.log \
+        || { echo "FAIL: not the host's precision message"; exit 1; }
+    ;;
+*)
+    echo "unknown case $1"; exit 2 ;;
+esac
+echo PASS
