@@ -5,6 +5,7 @@
 #include "fairing/operators.h"
 #include "fairing/solver.h"
 #include "geometry.h"
+#include "kernels.h"
 
 #include <chrono>
 #include <cmath>
@@ -74,6 +75,9 @@ void validate(const TriangleMesh& mesh, const Constraints& constraints, const Op
     if (!(std::isfinite(options.tolerance) && options.tolerance > 0))
         throw Error("the solver tolerance must be a finite number > 0 (got " +
                     number(options.tolerance) + ")");
+    if (options.threads < 0)
+        throw Error("the thread count must be >= 0, 0 meaning all cores (got " +
+                    std::to_string(options.threads) + ")");
     if (options.max_iterations < 1)
         throw Error("the iteration cap must be at least 1 (got " +
                     std::to_string(options.max_iterations) + ")");
@@ -242,7 +246,6 @@ void Run::restore() {
 }
 
 Result Run::run() {
-    const auto start = std::chrono::steady_clock::now();
     const ValidationReport& report = he_.report();
     result_.positions = mesh_.positions;
     result_.isolated_vertices = report.isolated_vertices;
@@ -342,6 +345,8 @@ Result Run::run() {
             worst.floored_edges = std::max(worst.floored_edges, assembly.floored_edges);
             worst.massless_vertices = std::max(worst.massless_vertices, assembly.massless_vertices);
             if (boundary == BoundaryMode::SmoothCurve) curve = assemble_boundary_curve(he_, x_);
+            surface.threads = detail::threads_for(surface.size(), options_.threads);
+            curve.threads = detail::threads_for(curve.size(), options_.threads);
         }
         if (boundary == BoundaryMode::SmoothCurve && !he_.boundary_loops().empty()) {
             for (int i = 0; i < n_; ++i) ever_free[i] |= free_curve[i];
@@ -409,17 +414,19 @@ Result Run::run() {
         warn(detail::count_of(worst.massless_vertices, "vertex has", "vertices have") +
              " only degenerate faces around it and was kept in place");
 
-    result_.seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result_;
 }
 
 }  // namespace
 
 Result fair(const TriangleMesh& mesh, const Constraints& constraints, const Options& options) {
+    const auto start = std::chrono::steady_clock::now();
     validate(mesh, constraints, options);
     Run run(mesh, constraints, options);
-    return run.run();
+    Result result = run.run();
+    result.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
 }
 
 }  // namespace fairing

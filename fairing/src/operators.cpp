@@ -1,6 +1,7 @@
 #include "fairing/operators.h"
 
 #include "geometry.h"
+#include "kernels.h"
 
 #include <cmath>
 
@@ -48,32 +49,25 @@ double SparseOperator::diagonal(int i) const {
 }
 
 void SparseOperator::apply_k(const Positions& x, Positions& y) const {
-    const int n = size();
-    y.resize(n, 3);
-    const double* xs = x.data();
+    y.resize(size(), 3);
     double* ys = y.data();
-    for (int i = 0; i < n; ++i) {
-        const double xi0 = xs[3 * i], xi1 = xs[3 * i + 1], xi2 = xs[3 * i + 2];
-        double s0 = 0, s1 = 0, s2 = 0;
-        for (int k = row_start[i]; k < row_start[i + 1]; ++k) {
-            const double w = weight[k];
-            const double* xj = xs + 3 * column[k];
-            s0 += w * (xj[0] - xi0);
-            s1 += w * (xj[1] - xi1);
-            s2 += w * (xj[2] - xi2);
-        }
+    detail::for_each_k_row(*this, x, [ys](int i, double s0, double s1, double s2) {
         ys[3 * i] = s0;
         ys[3 * i + 1] = s1;
         ys[3 * i + 2] = s2;
-    }
+    });
 }
 
 void SparseOperator::apply_l(const Positions& x, Positions& y) const {
-    apply_k(x, y);
-    for (int i = 0; i < size(); ++i) {
-        if (mass[i] > 0) y.row(i) /= mass[i];
-        else y.row(i).setZero();
-    }
+    y.resize(size(), 3);
+    double* ys = y.data();
+    const double* m = mass.data();
+    detail::for_each_k_row(*this, x, [ys, m](int i, double s0, double s1, double s2) {
+        const double inverse = m[i] > 0 ? 1.0 / m[i] : 0.0;
+        ys[3 * i] = s0 * inverse;
+        ys[3 * i + 1] = s1 * inverse;
+        ys[3 * i + 2] = s2 * inverse;
+    });
 }
 
 double mean_edge_length(const HalfEdgeMesh& mesh, const Positions& positions) {

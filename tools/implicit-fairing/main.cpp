@@ -492,7 +492,8 @@ int main(int argc, char** argv)
     std::string in, out;
     std::string opName = "curvature", boundaryName = "fixed";
     double timeStep = 0;
-    int steps = d.steps, order = d.order + 1, maxIterations = d.maxIterations, threads = 1;
+    int steps = d.steps, order = d.order + 1, maxIterations = d.maxIterations,
+        threads = fairing::Options().threads;
     double tolerance = d.tolerance;
     bool explicitIntegration = false, normalized = false, noVolume = false, area = false;
     bool qualityWeights = false, invertWeights = false, freeze = false, acceptUnconverged = false;
@@ -590,9 +591,9 @@ int main(int argc, char** argv)
                  "[acceptUnconverged] When the iteration cap is hit, keep the last iterate with a "
                  "warning instead of failing. Default: fail");
     app.add_option("--threads", threads,
-                   "Reserved for the multi-threaded solver: validated (>= 1) but without effect "
-                   "today, the engine is single-threaded. Default: 1")
-        ->check(CLI::Range(1, INT_MAX))
+                   "Threads for the solver on meshes of 50,000 vertices or more (smaller ones "
+                   "always use one): 0 = all cores (or OMP_NUM_THREADS). Default: 0")
+        ->check(CLI::Range(0, INT_MAX))
         ->type_name("N");
     app.add_flag("--json", json,
                  "Print one line of JSON on stdout (and nothing else there): vertices, faces, "
@@ -653,7 +654,7 @@ int main(int argc, char** argv)
         v.freezeOperator = freeze;
         v.acceptUnconverged = acceptUnconverged;
         fairing::Options options = filter_parameters::toOptions(op, v);
-        (void)threads;  // reserved: the engine has no thread count yet
+        options.threads = threads;
 
         TempFile temp(out);  // fails now, not after the work, when OUT's folder is unwritable
 

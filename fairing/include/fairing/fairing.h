@@ -84,7 +84,10 @@ struct Options {
     // When the iteration cap is hit: false refuses (the input stays as it was); true accepts the
     // last iterate and records a warning with the residual reached.
     bool accept_unconverged = false;
-    // Called now and then with the fraction of the work done, in [0, 1].
+    // Threads for the solver's loops on meshes of 50,000 vertices or more (smaller ones always
+    // use one): 0 = as many as OpenMP offers (OMP_NUM_THREADS, else the cores), 1 = one.
+    int threads = 0;
+    // Called now and then with the fraction of the work done, in [0, 1], never decreasing.
     std::function<void(double)> progress;
 };
 
@@ -144,7 +147,7 @@ struct Result {
     int inconsistent_edges = 0;     // edges whose two faces disagree on orientation
     int boundary_loops = 0;
     std::vector<std::string> warnings;
-    double seconds = 0;
+    double seconds = 0;             // the whole of fair(): validation, assembly, solves
 };
 
 // Runs options.steps steps of implicit (or explicit) fairing. Throws fairing::Error.

@@ -21,6 +21,7 @@ struct SparseOperator {
     std::vector<int> column;
     std::vector<double> weight;  // w_ij
     std::vector<double> mass;    // M_ii
+    int threads = 1;             // threads for products with K (see Options::threads)
 
     int size() const { return static_cast<int>(mass.size()); }
     double diagonal(int i) const;  // K_ii = -sum_j w_ij

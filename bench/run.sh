@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# End-to-end benchmark of the implicit fairing engine, its CLI and its MeshLab 2020.09 plugin
+# against CGAL smooth_shape, OpenMesh's JacobiLaplaceSmootherT and MeshLab's own Laplacian,
+# ScaleDependent Laplacian and Taubin smoothing, at equal diffusion time (bench/README.md).
+#
+#   bench/run.sh [--quick] [--no-micro] [--no-install]
+#
+#   --quick       skip the >= 1M-face meshes (jittered torus 1M, bunny Loop x2 1.2M)
+#   --no-micro    skip the Google Benchmark micro-benchmarks (bench/results/micro.md)
+#   --no-install  do not apt-get install the peers (libcgal-dev libopenmesh-dev gnuplot-nox)
+#
+# Needs scripts/setup.sh once (Debian packages, MeshLab 2020.09 SDK in the cache). Builds the
+# engine, CLI and plugin of the current tree, the peers and bench tools into
+# $FAIRING_CACHE/bench-build (never into build/), meshes into $FAIRING_CACHE/bench-meshes, runs
+# into $FAIRING_CACHE/bench-runs, and writes bench/results/*.md (+ runs.jsonl, PNG plot).
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+export FAIRING_CACHE=${FAIRING_CACHE:-$HOME/.cache/filter_implicit_fairing}
+bb=$FAIRING_CACHE/bench-build
+install=1 micro=1 args=()
+for a in "$@"; do
+  case "$a" in
+    --no-install) install=0 ;;
+    --no-micro) micro=0 ;;
+    --quick) args+=(--quick) ;;
+    -h|--help) sed -n 2,16p "$0"; exit 0 ;;
+    *) echo "run.sh: unknown option $a" >&2; exit 2 ;;
+  esac
+done
+
+if [ "$install" = 1 ]; then
+  missing=()
+  for p in libcgal-dev libopenmesh-dev libbenchmark-dev gnuplot-nox time python3; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  if [ ${#missing[@]} -gt 0 ]; then
+    echo "run.sh: installing ${missing[*]}" >&2
+    if [ "$(id -u)" -eq 0 ]; then sudo=; else sudo=sudo; fi
+    $sudo apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+  fi
+fi
+
+src=$("$root/scripts/meshlab-2020-sdk.sh")
+echo "run.sh: building engine, CLI and plugin into $bb/main" >&2
+cmake -S "$root" -B "$bb/main" -G Ninja -DCMAKE_BUILD_TYPE=Release -DFAIRING_BUILD_TESTS=OFF \
+  -DMESHLAB_2020_SOURCE="$src" >/dev/null
+cmake --build "$bb/main" -j2 >/dev/null
+echo "run.sh: building bench tools and peers into $bb/bench" >&2
+cmake -S "$root/bench" -B "$bb/bench" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$bb/bench" -j2 >/dev/null
+
+if [ "$micro" = 1 ]; then
+  echo "run.sh: micro-benchmarks (a few minutes)" >&2
+  "$bb/bench/bin/fairing-micro-bench" --benchmark_min_time=0.3 \
+    --benchmark_out="$FAIRING_CACHE/bench-micro.json" --benchmark_out_format=json >&2
+  python3 "$root/bench/report_micro.py" "$FAIRING_CACHE/bench-micro.json" > "$root/bench/results/micro.md"
+fi
+
+exec python3 "$root/bench/run_bench.py" --root "$root" --build "$bb" --cache "$FAIRING_CACHE" "${args[@]}"

@@ -1,0 +1,61 @@
+// Row-parallel loops of the engine (not installed). OpenMP is optional: without it, or below
+// kParallelRows rows, every loop runs on the calling thread.
+#pragma once
+
+#include "fairing/operators.h"
+
+#ifdef _OPENMP
+#include <omp.h>
+#define FAIRING_PRAGMA(x) _Pragma(#x)
+#else
+#define FAIRING_PRAGMA(x)
+#endif
+
+namespace fairing {
+namespace detail {
+
+// Below this many rows a second thread costs more than it brings (starting a team, and with
+// OpenMP's default active wait, idle threads spinning against the host's own threads).
+constexpr int kParallelRows = 50000;
+
+// Threads for a loop over `rows` rows: `requested` (0 = as many as OpenMP offers) above the
+// threshold, else one.
+inline int threads_for(int rows, int requested) {
+#ifdef _OPENMP
+    if (rows < kParallelRows) return 1;
+    return requested > 0 ? requested : omp_get_max_threads();
+#else
+    (void)rows;
+    (void)requested;
+    return 1;
+#endif
+}
+
+// Calls fn(i, s0, s1, s2) for every row i with (s0, s1, s2) = (K x)_i, rows split over
+// op.threads threads. fn must only write row i of its outputs.
+template <class RowFn>
+void for_each_k_row(const SparseOperator& op, const Positions& x, RowFn fn) {
+    const int n = op.size();
+    const double* xs = x.data();
+    const int* start = op.row_start.data();
+    const int* column = op.column.data();
+    const double* weight = op.weight.data();
+    const int threads = op.threads;
+    (void)threads;
+    FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1))
+    for (int i = 0; i < n; ++i) {
+        const double xi0 = xs[3 * i], xi1 = xs[3 * i + 1], xi2 = xs[3 * i + 2];
+        double s0 = 0, s1 = 0, s2 = 0;
+        for (int k = start[i]; k < start[i + 1]; ++k) {
+            const double w = weight[k];
+            const double* xj = xs + 3 * column[k];
+            s0 += w * (xj[0] - xi0);
+            s1 += w * (xj[1] - xi1);
+            s2 += w * (xj[2] - xi2);
+        }
+        fn(i, s0, s1, s2);
+    }
+}
+
+}  // namespace detail
+}  // namespace fairing
