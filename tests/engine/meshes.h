@@ -29,6 +29,11 @@ using fairing::Vec3;
 
 constexpr double kPi = 3.14159265358979323846;
 
+// The paper's three operators, for tests that check all of them.
+const fairing::Operator kOperators[] = {fairing::Operator::Umbrella,
+                                        fairing::Operator::ScaleDependent,
+                                        fairing::Operator::CurvatureFlow};
+
 // ------------------------------------------------------------------------------------------
 // Deterministic random numbers (splitmix64), identical on every platform.
 struct Rng {

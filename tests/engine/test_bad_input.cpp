@@ -18,8 +18,7 @@ using meshes::Positions;
 
 namespace {
 
-const Operator kOperators[] = {Operator::Umbrella, Operator::ScaleDependent,
-                               Operator::CurvatureFlow};
+using meshes::kOperators;
 
 TriangleMesh sphere() { return meshes::radial_noise(meshes::icosphere(2), 0.05, 66); }
 

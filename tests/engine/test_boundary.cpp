@@ -14,8 +14,7 @@ using meshes::Positions;
 
 namespace {
 
-const Operator kOperators[] = {Operator::Umbrella, Operator::ScaleDependent,
-                               Operator::CurvatureFlow};
+using meshes::kOperators;
 
 // [-1,1]^2 grid whose boundary vertices carry in-plane noise (35% of a cell) and every vertex a
 // z-noise (30% of a cell).

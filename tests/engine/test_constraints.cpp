@@ -16,8 +16,7 @@ using meshes::Positions;
 
 namespace {
 
-const Operator kOperators[] = {Operator::Umbrella, Operator::ScaleDependent,
-                               Operator::CurvatureFlow};
+using meshes::kOperators;
 
 TriangleMesh noisy_sphere() { return meshes::radial_noise(meshes::icosphere(3), 0.05, 77); }
 

@@ -20,8 +20,7 @@ using meshes::Positions;
 
 namespace {
 
-const Operator kOperators[] = {Operator::Umbrella, Operator::ScaleDependent,
-                               Operator::CurvatureFlow};
+using meshes::kOperators;
 
 TriangleMesh noisy_sphere(int levels = 2) {
     return meshes::radial_noise(meshes::icosphere(levels), 0.05, 55);

@@ -20,8 +20,7 @@ using meshes::Vec3;
 
 namespace {
 
-const Operator kOperators[] = {Operator::Umbrella, Operator::ScaleDependent,
-                               Operator::CurvatureFlow};
+using meshes::kOperators;
 
 struct Assembled {
     HalfEdgeMesh mesh;

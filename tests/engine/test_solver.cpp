@@ -70,8 +70,7 @@ std::vector<char> every_kth_fixed(int n, int k) {
     return free;
 }
 
-const Operator kOperators[] = {Operator::Umbrella, Operator::ScaleDependent,
-                               Operator::CurvatureFlow};
+using meshes::kOperators;
 
 }  // namespace
 

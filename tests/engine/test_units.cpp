@@ -20,8 +20,7 @@ using meshes::Vec3;
 
 namespace {
 
-const Operator kOperators[] = {Operator::Umbrella, Operator::ScaleDependent,
-                               Operator::CurvatureFlow};
+using meshes::kOperators;
 
 TriangleMesh base_mesh() {
     // Off-center noisy sphere: scaling about the origin also moves it.

@@ -24,8 +24,7 @@ using meshes::Vec3;
 
 namespace {
 
-const Operator kOperators[] = {Operator::Umbrella, Operator::ScaleDependent,
-                               Operator::CurvatureFlow};
+using meshes::kOperators;
 
 Options options(Operator op, int order, int steps, double time_step = 2.0) {
     Options o;
