@@ -7,6 +7,7 @@
 #include "geometry.h"
 #include "kernels.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -157,6 +158,7 @@ private:
     Positions x_;                   // centred working positions (plus virtual vertices)
     Result result_;
     bool warned_stability_ = false;
+    int needle_faces_ = 0;  // most needles seen by an assembly so far
     double progress_ = 0;
 };
 
@@ -206,7 +208,7 @@ void Run::integrate(const SparseOperator& op, const std::vector<char>& free, dou
     settings.max_iterations = options_.max_iterations;
     if (options_.progress) {
         const double steps = std::max(1, options_.steps);
-        settings.progress = [&](double f) {
+        settings.progress = [this, step, steps](double f) {
             report_progress(std::min(1.0, (step + std::min(1.0, f)) / steps));
         };
     }
@@ -226,7 +228,15 @@ void Run::integrate(const SparseOperator& op, const std::vector<char>& free, dou
                                  std::to_string(step + 1) + ") did not converge in " +
                                  std::to_string(stats.iterations) + " iterations: residual " +
                                  number(stats.residual) + ", tolerance " +
-                                 number(options_.tolerance);
+                                 number(options_.tolerance) +
+                                 (needle_faces_ > 0
+                                      ? " (" + detail::count_of(needle_faces_, "face is a needle",
+                                                                "faces are needles") +
+                                            ", with an angle below 1e-4 rad: their cotangent "
+                                            "weights make the system ill-conditioned; MeshLab's "
+                                            "'Remove T-Vertices by Edge Flip' or 'Merge Close "
+                                            "Vertices' repairs them)"
+                                      : std::string());
         if (!options_.accept_unconverged)
             throw Error(what + ". Raise the iteration cap or the tolerance, or use a smaller "
                                "time step; the mesh was left unchanged");
@@ -344,6 +354,7 @@ Result Run::run() {
             worst.zero_area_faces = std::max(worst.zero_area_faces, assembly.zero_area_faces);
             worst.floored_edges = std::max(worst.floored_edges, assembly.floored_edges);
             worst.massless_vertices = std::max(worst.massless_vertices, assembly.massless_vertices);
+            needle_faces_ = std::max(needle_faces_, assembly.needle_faces);
             if (boundary == BoundaryMode::SmoothCurve) curve = assemble_boundary_curve(he_, x_);
             surface.threads = detail::threads_for(surface.size(), options_.threads);
             curve.threads = detail::threads_for(curve.size(), options_.threads);
@@ -371,7 +382,8 @@ Result Run::run() {
     for (int i = 0; i < n_; ++i) {
         if (he_.is_isolated(i)) continue;
         if (!ever_free[i]) ++fixed;
-        if (restorable_[i]) result_.positions.row(i) = x_.row(i) + origin;
+        // No step taken (time step 0): keep the input bits, not (p - origin) + origin.
+        if (restorable_[i] && result_.steps > 0) result_.positions.row(i) = x_.row(i) + origin;
     }
     if (!result_.positions.allFinite())
         throw Error("the result holds non-finite positions; the mesh was left unchanged");
@@ -388,6 +400,36 @@ Result Run::run() {
         }
     }
 
+    if (steps > 0 && std::none_of(ever_free.begin(), ever_free.end(), [](char f) { return f != 0; }))
+        warn("no vertex was free to move: all " +
+             detail::count_of(n_ - report.isolated_vertices, "vertex", "vertices") +
+             " in faces are fixed (on a fixed boundary, unselected, of weight 0, or with only "
+             "degenerate faces around them); the mesh is unchanged");
+    {
+        // Duplicated vertices split the surface into open pieces whose boundaries coincide, so
+        // boundary vertices at exactly the position of another one give them away (checking
+        // the boundary only keeps this off the cost of closed meshes).
+        std::vector<int> order;
+        for (int i = 0; i < n_; ++i)
+            if (he_.is_boundary_vertex(i)) order.push_back(i);
+        const auto less = [&](int a, int b) {
+            for (int k = 0; k < 3; ++k)
+                if (mesh_.positions(a, k) != mesh_.positions(b, k))
+                    return mesh_.positions(a, k) < mesh_.positions(b, k);
+            return false;
+        };
+        std::sort(order.begin(), order.end(), less);
+        int coincident = 0;
+        for (std::size_t k = 0; k < order.size(); ++k)
+            if ((k > 0 && !less(order[k - 1], order[k])) ||
+                (k + 1 < order.size() && !less(order[k], order[k + 1])))
+                ++coincident;
+        if (coincident > 0)
+            warn(detail::count_of(coincident, "vertex shares its position",
+                                  "vertices share their position") +
+                 " with another vertex (duplicated vertices split the surface into open pieces; "
+                 "MeshLab's 'Remove Duplicate Vertices' merges them)");
+    }
     if (report.dropped_faces > 0)
         warn(detail::count_of(report.dropped_faces, "face repeats", "faces repeat") +
              " a vertex and was left out (MeshLab's 'Remove Zero Area Faces' deletes them)");

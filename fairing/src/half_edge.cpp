@@ -39,8 +39,9 @@ HalfEdgeMesh HalfEdgeMesh::build(const Positions& positions,
         if (!positions.row(v).allFinite()) ++non_finite;
     if (non_finite > 0)
         throw Error(detail::count_of(non_finite, "vertex has", "vertices have") +
-                    " non-finite coordinates (NaN or Inf); delete or repair them before "
-                    "smoothing");
+                    " non-finite coordinates (NaN or Inf): select them with MeshLab's "
+                    "'Conditional Vertex Selection' filter (x != x || y != y || z != z || "
+                    "abs(x) + abs(y) + abs(z) > 1e38) and run 'Delete Selected Vertices' first");
 
     for (int f = 0; f < static_cast<int>(triangles.size()); ++f) {
         const Triangle& t = triangles[f];
@@ -98,6 +99,21 @@ HalfEdgeMesh HalfEdgeMesh::build(const Positions& positions,
             ++non_manifold;
         }
         i = j;
+    }
+    // Faces with the same three vertices as another face, in any order (MeshLab's definition),
+    // show up as edges with too many faces or faces of opposite orientation: only then are they
+    // looked for, so clean meshes do not pay for the sort.
+    if (non_manifold > 0 || mesh.report_.inconsistent_edges > 0) {
+        std::vector<Triangle> sorted(mesh.faces_);
+        for (Triangle& t : sorted) std::sort(t.begin(), t.end());
+        std::sort(sorted.begin(), sorted.end());
+        long long duplicated = 0;
+        for (std::size_t f = 1; f < sorted.size(); ++f)
+            if (sorted[f] == sorted[f - 1]) ++duplicated;
+        if (duplicated > 0)
+            throw Error(detail::count_of(duplicated, "duplicated face", "duplicated faces") +
+                        " (the same three vertices as another face): run MeshLab's 'Remove "
+                        "Duplicate Faces' filter (Filters > Cleaning and Repairing) first");
     }
     if (non_manifold > 0)
         throw Error(detail::count_of(non_manifold, "non-manifold edge", "non-manifold edges") +

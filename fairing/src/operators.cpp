@@ -104,13 +104,16 @@ SparseOperator assemble(Operator op, const HalfEdgeMesh& mesh, const Positions& 
                 continue;
             }
             const double twice_area = (p[1] - p[0]).cross(p[2] - p[0]).norm();
+            double largest_cot = 0;
             for (int k = 0; k < 3; ++k) {
                 // Half-edge 3f+k runs p[k] -> p[k+1]; its opposite corner is p[k+2].
                 const Vec3& c = p[(k + 2) % 3];
                 const Vec3 u = p[k] - c, v = p[(k + 1) % 3] - c;
                 cot_opposite[3 * f + k] = u.dot(v) / twice_area;
+                largest_cot = std::max(largest_cot, std::abs(cot_opposite[3 * f + k]));
                 area[t[k]] += 0.5 * twice_area;
             }
+            if (largest_cot > 1e4) ++r.needle_faces;
         }
     }
 

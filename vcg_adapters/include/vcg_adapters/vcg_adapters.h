@@ -171,13 +171,22 @@ fairing::Constraints makeConstraints(const MeshType& m, const IndexMap& map,
             throw fairing::Error("\"Use vertex quality as smoothing weight\" is checked but the "
                                  "mesh has no vertex quality; compute one first (Filters > "
                                  "Quality Measure and Computations) or uncheck it");
+        std::size_t nonFinite = 0, firstNonFinite = 0;
+        for (std::size_t r = 0; r < n; ++r)
+            if (!std::isfinite(static_cast<double>(m.vert[map.rowToVertex[r]].cQ())) &&
+                nonFinite++ == 0)
+                firstNonFinite = map.rowToVertex[r];
+        if (nonFinite > 0)
+            throw fairing::Error(std::to_string(nonFinite) +
+                                 (nonFinite == 1 ? " vertex has" : " vertices have") +
+                                 " a non-finite quality (NaN or Inf; the first is vertex " +
+                                 std::to_string(firstNonFinite) + "): quality weights need "
+                                 "finite values. Set them with Filters > Quality Measure and "
+                                 "Computations > 'Per Vertex Quality Function', or uncheck "
+                                 "\"Use vertex quality as smoothing weight\"");
         c.weights.resize(n);
         for (std::size_t r = 0; r < n; ++r) {
             const double q = static_cast<double>(m.vert[map.rowToVertex[r]].cQ());
-            if (!std::isfinite(q))
-                throw fairing::Error("vertex " + std::to_string(map.rowToVertex[r]) +
-                                     " has a non-finite quality; quality weights need finite "
-                                     "values");
             double w = q;
             if (w < 0.0) { w = 0.0; ++rep.qualityClamped; }
             else if (w > 1.0) { w = 1.0; ++rep.qualityClamped; }

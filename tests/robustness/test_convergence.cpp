@@ -1,0 +1,82 @@
+// Issue 6, item 2: a solve that cannot converge within the iteration cap is reported with its
+// residual and leaves the mesh unchanged; with accept_unconverged the last iterate is written
+// and a warning carries the residual.
+#include "robust.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <string>
+
+using namespace robust;
+
+namespace {
+
+// The residual printed in a message: the number after "residual ".
+double residual_in(const std::string& msg) {
+    const std::size_t at = msg.find("residual ");
+    if (at == std::string::npos) return -1;
+    return std::strtod(msg.c_str() + at + 9, nullptr);
+}
+
+}  // namespace
+
+TEST(NonConverging, IterationCapOneIsRefusedWithResidual) {
+    const TriangleMesh m = noisy_sphere(3);
+    for (Operator op : meshes::kOperators)
+        for (int order : {1, 2}) {
+            SCOPED_TRACE(testing::Message() << fairing::to_string(op) << " order " << order);
+            Options o = defaults(op);
+            o.order = order;
+            o.max_iterations = 1;
+            const std::string msg = expect_refused(
+                m, {}, o, {"did not converge in 1 iterations", "residual", "tolerance 1e-08",
+                           "the mesh was left unchanged", "Raise the iteration cap"});
+            EXPECT_GT(residual_in(msg), o.tolerance) << msg;
+        }
+}
+
+TEST(NonConverging, AcceptUnconvergedWritesWithWarning) {
+    const TriangleMesh m = noisy_sphere(3);
+    for (Operator op : meshes::kOperators) {
+        Options o = defaults(op);
+        o.max_iterations = 1;
+        o.accept_unconverged = true;
+        const Result r = expect_result(m, {}, o);
+        ASSERT_EQ(r.solves.size(), 1u);
+        EXPECT_FALSE(r.solves[0].converged);
+        EXPECT_EQ(r.solves[0].iterations, 1);
+        EXPECT_GT(r.max_residual, o.tolerance);
+        EXPECT_TRUE(has_warning(r, "did not converge in 1 iterations")) << warnings(r);
+        EXPECT_TRUE(has_warning(r, "unconverged result was kept")) << warnings(r);
+        bool residual_named = false;
+        for (const std::string& w : r.warnings)
+            residual_named = residual_named ||
+                             std::abs(residual_in(w) / r.max_residual - 1) < 1e-5;
+        EXPECT_TRUE(residual_named) << warnings(r);
+        EXPECT_GT(r.vertices_moved, 0);
+        // volume still restored on the unconverged iterate
+        EXPECT_NEAR(volume_of(r.positions, m.triangles), volume_of(m.positions, m.triangles),
+                    1e-9 * volume_of(m.positions, m.triangles));
+    }
+}
+
+TEST(NonConverging, FailureInALaterStepStillLeavesTheMeshUnchanged) {
+    // Step 1 converges, a later one cannot: nothing of the earlier steps escapes.
+    const TriangleMesh m = noisy_sphere(3);
+    Options o = defaults(Operator::CurvatureFlow);
+    o.steps = 3;
+    const Result ok = expect_result(m, {}, o);
+    int most = 0;
+    for (const auto& s : ok.solves) most = std::max(most, s.iterations);
+    ASSERT_GT(most, 2);
+    o.max_iterations = most - 1;
+    expect_refused(m, {}, o, {"did not converge", "residual"});
+}
+
+TEST(NonConverging, SmoothBoundaryCurveSolveIsReportedToo) {
+    const TriangleMesh m = meshes::noisy_open_grid(16, 0.3, 0.3);
+    Options o = defaults(Operator::ScaleDependent);
+    o.boundary = fairing::BoundaryMode::SmoothCurve;
+    o.max_iterations = 1;
+    expect_refused(m, {}, o, {"did not converge", "residual"});
+}
