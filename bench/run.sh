@@ -29,16 +29,8 @@ for a in "$@"; do
 done
 
 if [ "$install" = 1 ]; then
-  missing=()
-  for p in libcgal-dev libopenmesh-dev libbenchmark-dev gnuplot-nox time python3; do
-    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-  done
-  if [ ${#missing[@]} -gt 0 ]; then
-    echo "run.sh: installing ${missing[*]}" >&2
-    if [ "$(id -u)" -eq 0 ]; then sudo=; else sudo=sudo; fi
-    $sudo apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
-  fi
+  "$root/scripts/ensure-packages.sh" libcgal-dev libopenmesh-dev libbenchmark-dev gnuplot-nox \
+    time python3
 fi
 
 src=$("$root/scripts/meshlab-2020-sdk.sh")

@@ -14,12 +14,7 @@ build_dir=${BUILD_DIR:-$root/build}
 out=${OUT_DIR:-$root/out/demo}
 
 "$root/scripts/setup.sh"
-for p in f3d imagemagick fonts-dejavu-core; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || {
-    echo "demo: installing $p" >&2
-    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "$p" >/dev/null
-  }
-done
+"$root/scripts/ensure-packages.sh" f3d imagemagick fonts-dejavu-core
 
 mkdir -p "$out"
 if [ $# -ge 1 ]; then

@@ -21,11 +21,6 @@ DEPS=(dpkg-dev xz-utils debian-archive-keyring)
 
 log() { printf 'meshlab-2020-sdk: %s\n' "$*" >&2; }
 die() { log "ERROR: $*"; exit 1; }
-as_root() {
-    if [ "$(id -u)" -eq 0 ]; then "$@"
-    elif command -v sudo >/dev/null 2>&1; then sudo "$@"
-    else die "need root to run: $*"; fi
-}
 valid() {   # $1 = dir: a complete, unpacked source tree
     [ -f "$1/STAMP" ] && [ -f "$1/src/common/interfaces.h" ] \
         && [ -f "$1/vcglib/vcg/complex/complex.h" ]
@@ -37,17 +32,7 @@ if valid "$FINAL"; then
 fi
 
 # --- tools apt-get source needs (dpkg-source unpacks the package) ------------------------
-missing=()
-for p in "${DEPS[@]}"; do
-    [ "$(dpkg-query -W -f='${db:Status-Status}' "$p" 2>/dev/null || true)" = installed ] \
-        || missing+=("$p")
-done
-if [ "${#missing[@]}" -gt 0 ]; then
-    log "installing ${missing[*]}"
-    as_root apt-get update -q >&2
-    as_root env DEBIAN_FRONTEND=noninteractive \
-        apt-get install -y -q --no-install-recommends "${missing[@]}" >&2
-fi
+"$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/ensure-packages.sh" "${DEPS[@]}"
 
 mkdir -p "$CACHE"
 exec 9>"$CACHE/.lock-2020"

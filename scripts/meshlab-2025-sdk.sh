@@ -37,25 +37,8 @@ DEPS=(qtbase5-dev libqt5opengl5-dev libeigen3-dev libglew-dev libglu1-mesa-dev
 log() { printf 'meshlab-2025-sdk: %s\n' "$*" >&2; }
 die() { log "ERROR: $*"; exit 1; }
 
-as_root() {
-    if [ "$(id -u)" -eq 0 ]; then "$@"
-    elif command -v sudo >/dev/null 2>&1; then sudo "$@"
-    else die "need root to run: $*"; fi
-}
-
 # --- 1. build dependencies ----------------------------------------------------------------
-missing=()
-for p in "${DEPS[@]}"; do
-    if [ "$(dpkg-query -W -f='${db:Status-Status}' "$p" 2>/dev/null || true)" != installed ]; then
-        missing+=("$p")
-    fi
-done
-if [ "${#missing[@]}" -gt 0 ]; then
-    log "installing build dependencies: ${missing[*]}"
-    as_root apt-get update -q >&2
-    as_root env DEBIAN_FRONTEND=noninteractive \
-        apt-get install -y -q --no-install-recommends "${missing[@]}" >&2
-fi
+"$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/ensure-packages.sh" "${DEPS[@]}"
 
 # --- toolchain part of the cache key ------------------------------------------------------
 QT_VER="$(dpkg-query -W -f='${Version}' qtbase5-dev)"

@@ -16,16 +16,7 @@ packages+=(clang libclang-rt-14-dev)
 # (python3 test helpers; xdotool, imagemagick and tesseract drive and read the GUI under Xvfb).
 packages+=(meshlab qtbase5-dev libqt5opengl5-dev libglew-dev dpkg-dev xz-utils python3
            xvfb xauth xdotool imagemagick tesseract-ocr tesseract-ocr-eng)
-missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  echo "setup: installing ${missing[*]}" >&2
-  if [ "$(id -u)" -eq 0 ]; then sudo=; else sudo=sudo; fi
-  $sudo apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
-fi
+"$root/scripts/ensure-packages.sh" "${packages[@]}"
 
 # MeshLab 2020.09 headers (Debian source package, pinned) into the cache; prints its directory.
 meshlab_2020_source=$("$root/scripts/meshlab-2020-sdk.sh")

@@ -236,26 +236,38 @@ def xml_escape(s):
             .replace('"', "&quot;"))
 
 
-def write_mlx(out, filt, overrides, select_x_gt=None):
+def filter_lines(filt, overrides):
+    """The .mlx lines of one of our filters with every parameter (defaults overridden)."""
     if filt not in FILTERS:
         fail("unknown filter " + filt)
     values = param_values(overrides)
-    lines = ["<!DOCTYPE FilterScript>", "<FilterScript>"]
-    if select_x_gt is not None:
-        lines += [' <filter name="Conditional Vertex Selection">',
-                  '  <Param name="condSelect" type="RichString" value="%s"/>'
-                  % xml_escape("x > %s" % select_x_gt),
-                  " </filter>"]
-    lines.append(' <filter name="%s">' % xml_escape(FILTERS[filt]))
+    lines = [' <filter name="%s">' % xml_escape(FILTERS[filt])]
     for name, typ, _, enum in PARAMS:
         attrs = 'name="%s" type="%s" value="%s"' % (name, typ, xml_escape(values[name]))
         if enum is not None:
             attrs += ' enum_cardinality="%d"' % len(enum)
             attrs += "".join(' enum_val%d="%s"' % (i, xml_escape(e)) for i, e in enumerate(enum))
         lines.append("  <Param %s/>" % attrs)
-    lines += [" </filter>", "</FilterScript>", ""]
+    lines.append(" </filter>")
+    return lines
+
+
+def write_script(out, filter_blocks):
+    """Writes an .mlx holding the given filter blocks' lines, in order."""
+    lines = ["<!DOCTYPE FilterScript>", "<FilterScript>"] + filter_blocks
+    lines += ["</FilterScript>", ""]
     with open(out, "w", encoding="utf-8") as f:
         f.write("\n".join(lines))
+
+
+def write_mlx(out, filt, overrides, select_x_gt=None):
+    lines = []
+    if select_x_gt is not None:
+        lines += [' <filter name="Conditional Vertex Selection">',
+                  '  <Param name="condSelect" type="RichString" value="%s"/>'
+                  % xml_escape("x > %s" % select_x_gt),
+                  " </filter>"]
+    write_script(out, lines + filter_lines(filt, overrides))
 
 
 # ---------------------------------------------------------------------------------------------

@@ -119,11 +119,8 @@ def read_faces(path):
 
 
 def write_mlx(out, filt, pre, overrides):
-    if filt not in mltest.FILTERS:
-        fail("unknown filter " + filt)
-    values = mltest.param_values(overrides)
     esc = mltest.xml_escape
-    lines = ["<!DOCTYPE FilterScript>", "<FilterScript>"]
+    lines = []
     for p in pre:
         name, _, param = p.partition(":")
         lines.append(' <filter name="%s">' % esc(name))
@@ -137,16 +134,7 @@ def write_mlx(out, filt, pre, overrides):
                 pass
             lines.append('  <Param name="%s" type="%s" value="%s"/>' % (esc(k), typ, esc(v)))
         lines.append(" </filter>")
-    lines.append(' <filter name="%s">' % esc(mltest.FILTERS[filt]))
-    for name, typ, _, enum in mltest.PARAMS:
-        attrs = 'name="%s" type="%s" value="%s"' % (name, typ, esc(values[name]))
-        if enum is not None:
-            attrs += ' enum_cardinality="%d"' % len(enum)
-            attrs += "".join(' enum_val%d="%s"' % (i, esc(e)) for i, e in enumerate(enum))
-        lines.append("  <Param %s/>" % attrs)
-    lines += [" </filter>", "</FilterScript>", ""]
-    with open(out, "w", encoding="utf-8") as f:
-        f.write("\n".join(lines))
+    mltest.write_script(out, lines + mltest.filter_lines(filt, overrides))
 
 
 def positions(path):
