@@ -20,6 +20,7 @@ import sys
 
 ARGS = None
 ML = None  # the mltest module
+DM = None  # scripts/demo_mesh.py: PLY reader (positions and faces), mean edge length
 
 
 def fail(msg):
@@ -157,43 +158,6 @@ def match_positions(A, B, tol, what):
     print("%s: %d vertices match within %.3g (tolerance %g)" % (what, len(A), worst, tol))
 
 
-def mean_edge(V, F):
-    edges = set()
-    for f in F:
-        for k in range(3):
-            a, b = f[k], f[(k + 1) % 3]
-            edges.add((min(a, b), max(a, b)))
-    return sum(math.dist(V[a], V[b]) for a, b in edges) / len(edges)
-
-
-def ply_faces(path):
-    """Faces of a binary PLY as mltest.py writes them (uchar count, int indices)."""
-    with open(path, "rb") as f:
-        data = f.read()
-    end = data.index(b"\n", data.index(b"end_header")) + 1
-    head = data[:end].decode()
-    nv = nf = 0
-    vprops = 0
-    section = None
-    for line in head.splitlines():
-        w = line.split()
-        if w[:1] == ["element"]:
-            section = w[1]
-            if section == "vertex":
-                nv = int(w[2])
-            elif section == "face":
-                nf = int(w[2])
-        elif w[:1] == ["property"] and section == "vertex":
-            vprops += 1
-    off = end + nv * vprops * 4
-    F = []
-    for _ in range(nf):
-        n = data[off]
-        F.append(struct.unpack_from("<%di" % n, data, off + 1))
-        off += 1 + 4 * n
-    return F
-
-
 # ---------------------------------------------------------------------------------------------
 # cases
 
@@ -241,9 +205,8 @@ def case_roundtrip(fmt):
 
 def case_json():
     src = gen("sphere", "sphere.ply")
-    V = [ML.xyz(v) for v in ML.read_ply_vertices(src)]
-    F = ply_faces(src)
-    e = mean_edge(V, F)
+    V, F = DM.read_ply(src)
+    e = DM.mean_edge(V, F)
     fields = ["vertices", "faces", "operator", "steps", "lambda_dt", "cg_iterations", "residual",
               "volume_before", "volume_after", "seconds_engine", "seconds_total"]
     for op, order, ts, expect_ldt in [
@@ -493,7 +456,7 @@ def case_progress():
 
 
 def main():
-    global ARGS, ML
+    global ARGS, ML, DM
     ap = argparse.ArgumentParser()
     ap.add_argument("case")
     ap.add_argument("--tool", required=True)
@@ -504,6 +467,11 @@ def main():
     spec = importlib.util.spec_from_file_location("mltest", ARGS.mltest)
     ML = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(ML)
+    spec = importlib.util.spec_from_file_location(
+        "demo_mesh", os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
+                                  "scripts", "demo_mesh.py"))
+    DM = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(DM)
     shutil.rmtree(ARGS.work, ignore_errors=True)
     os.makedirs(ARGS.work)
     cases = {"json": case_json, "engine-reference": case_engine_reference,
