@@ -255,8 +255,12 @@ fairing_plugin::RunFigures FilterImplicitFairing::apply(fairing_plugin::FilterId
     logLine(QString::fromUtf8("Steps: %1; absolute λdt per step: %2 (time step %3)")
                 .arg(r.steps).arg(num(r.lambda_dt)).arg(num(o.time_step)));
     for (const fairing::SolveReport& s : r.solves)
-        logLine(QString("  step %1, %2: %3 CG iterations, residual %4%5")
+        logLine(QString("  step %1, %2: %3 CG iterations%4, residual %5%6")
                     .arg(s.step).arg(QString::fromStdString(s.system)).arg(s.iterations)
+                    .arg(s.factored ? QString(" (factored L² preconditioner: %1 inner "
+                                              "first-order iterations)")
+                                          .arg(s.inner_iterations)
+                                    : QString())
                     .arg(num(s.residual)).arg(s.converged ? "" : " (NOT converged)"));
     logLine(QString("CG iterations in total: %1; largest final residual: %2")
                 .arg(r.total_iterations).arg(num(r.max_residual)));
@@ -296,6 +300,7 @@ fairing_plugin::RunFigures FilterImplicitFairing::apply(fairing_plugin::FilterId
     fairing_plugin::RunFigures figures;
     figures.counts = {{"steps", r.steps},
                       {"iterations", r.total_iterations},
+                      {"inner_iterations", r.total_inner_iterations},
                       {"vertices_moved", r.vertices_moved},
                       {"vertices_fixed", r.vertices_fixed}};
     figures.values = {{"residual", r.max_residual},

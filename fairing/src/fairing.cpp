@@ -206,6 +206,7 @@ void Run::integrate(const SparseOperator& op, const std::vector<char>& free, dou
     settings.tolerance = options_.tolerance;
     settings.norm = options_.norm;
     settings.max_iterations = options_.max_iterations;
+    settings.preconditioner = options_.preconditioner;
     if (options_.progress) {
         const double steps = std::max(1, options_.steps);
         settings.progress = [this, step, steps](double f) {
@@ -218,10 +219,13 @@ void Run::integrate(const SparseOperator& op, const std::vector<char>& free, dou
     report.step = step;
     report.system = system;
     report.iterations = stats.iterations;
+    report.inner_iterations = stats.inner_iterations;
+    report.factored = stats.factored;
     report.residual = stats.residual;
     report.converged = stats.converged;
     result_.solves.push_back(report);
     result_.total_iterations += stats.iterations;
+    result_.total_inner_iterations += stats.inner_iterations;
     result_.max_residual = std::max(result_.max_residual, stats.residual);
     if (!stats.converged) {
         const std::string what = "the linear solve (" + std::string(system) + ", step " +

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cmath>
+#include <memory>
 #include <string>
 
 namespace fairing {
@@ -59,37 +60,46 @@ Column3 column_dots(const Positions& a, const Positions& b, const std::vector<ch
 }  // namespace
 
 void LinearSystem::apply(const Positions& x, Positions& y, Positions& scratch) const {
+    apply_dot(x, y, scratch);
+}
+
+Column3 LinearSystem::apply_dot(const Positions& x, Positions& y, Positions& scratch) const {
     const int n = op->size();
     y.resize(n, 3);
     const double* xs = x.data();
     const double* d = diagonal.data();
+    const char* f = free.data();
     double* ys = y.data();
     const double lambda = lambda_dt;
-    if (order == 1) {
-        detail::for_each_k_row(*op, x, [=](int i, double s0, double s1, double s2) {
-            ys[3 * i] = d[i] * xs[3 * i] - lambda * s0;
-            ys[3 * i + 1] = d[i] * xs[3 * i + 1] - lambda * s1;
-            ys[3 * i + 2] = d[i] * xs[3 * i + 2] - lambda * s2;
-        });
-    } else {
-        // Hard constraints impose L(x_i) = 0 (section 2.7), so L^2 = L P L with P zeroing the
-        // fixed rows; K P M^-1 K stays symmetric positive semi-definite.
+    // Row i of A x: d_i x_i + sign lambda (K v)_i, v = x (order 1, sign -1) or P M^-1 K x.
+    // Hard constraints impose L(x_i) = 0 (section 2.7), so L^2 = L P L with P zeroing the fixed
+    // rows; K P M^-1 K stays symmetric positive semi-definite.
+    const double sign = order == 1 ? -1.0 : 1.0;
+    const Positions* v = &x;
+    if (order == 2) {
         scratch.resize(n, 3);
         double* ss = scratch.data();
         const double* m = op->mass.data();
-        const char* f = free.data();
         detail::for_each_k_row(*op, x, [=](int i, double s0, double s1, double s2) {
             const double inverse = f[i] && m[i] > 0 ? 1.0 / m[i] : 0.0;
             ss[3 * i] = s0 * inverse;
             ss[3 * i + 1] = s1 * inverse;
             ss[3 * i + 2] = s2 * inverse;
         });
-        detail::for_each_k_row(*op, scratch, [=](int i, double s0, double s1, double s2) {
-            ys[3 * i] = d[i] * xs[3 * i] + lambda * s0;
-            ys[3 * i + 1] = d[i] * xs[3 * i + 1] + lambda * s1;
-            ys[3 * i + 2] = d[i] * xs[3 * i + 2] + lambda * s2;
-        });
+        v = &scratch;
     }
+    const double scale = sign * lambda;
+    return detail::sum_over_k_rows(*op, *v, [=](int i, double s0, double s1, double s2, double* a) {
+        const double* xi = xs + 3 * i;
+        double* yi = ys + 3 * i;
+        yi[0] = d[i] * xi[0] + scale * s0;
+        yi[1] = d[i] * xi[1] + scale * s1;
+        yi[2] = d[i] * xi[2] + scale * s2;
+        if (!f[i]) return;
+        a[0] = xi[0] * yi[0];
+        a[1] = xi[1] * yi[1];
+        a[2] = xi[2] * yi[2];
+    });
 }
 
 std::vector<double> LinearSystem::jacobi_diagonal() const {
@@ -114,10 +124,290 @@ std::vector<double> LinearSystem::jacobi_diagonal() const {
     return d;
 }
 
-SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& settings) {
+namespace {
+
+// Relative tolerance of the first-order solves inside the Factored preconditioner: B^-1 needs
+// only a rough inverse, and flexible CG absorbs the rest (1e-2 was measured best, see
+// bench/results).
+constexpr double kInnerTolerance = 1e-2;
+// Cap of each inner solve. Typical solves take 5-20 iterations (bench/results); on a mesh of
+// collapsing needles they may not reach the tolerance at all, and a rough B^-1 is still a valid
+// preconditioner for flexible CG, so the work per outer iteration stays bounded.
+constexpr int kInnerCap = 64;
+
+// Automatic: an L^2 solve starts with Jacobi, which wins on light steps (no inner solves), and
+// after this many iterations switches to Factored if, at the rate seen so far, Jacobi would need
+// as many again. An iteration of Factored costs some 20 of Jacobi's (bench/results), so past
+// roughly 2 x kJacobiTrial Jacobi iterations Factored is the cheaper one.
+constexpr int kJacobiTrial = 40;
+
+void check_finite(double v, int iteration) {
+    if (!std::isfinite(v))
+        throw Error("the linear solve produced a non-finite value at iteration " +
+                    std::to_string(iteration) +
+                    "; the input is too degenerate for this operator (try the umbrella "
+                    "operator, or repair the mesh first)");
+}
+
+bool any(const std::array<bool, 3>& active) { return active[0] || active[1] || active[2]; }
+
+std::vector<double> inverse_jacobi(const LinearSystem& system) {
+    std::vector<double> inverse = system.jacobi_diagonal();
+    for (double& v : inverse) v = 1.0 / v;
+    return inverse;
+}
+
+// Iterations of Jacobi-preconditioned CG on the free rows, from x with r = b - A x (r zero on
+// fixed rows). Column c iterates while active[c], and stops once rn[c] <= goal[c]; at most
+// `cap` iterations (counted from `done`). Returns the iteration count reached.
+int jacobi_cg(const LinearSystem& system, const double* inv, Positions& x, Positions& r,
+              Positions& p, Positions& q, Positions& scratch, const Column3& goal,
+              ResidualNorm norm, int done, int cap, std::array<bool, 3>& active, Column3& rn,
+              const std::function<void(const Column3&)>& after_iteration) {
     const int n = system.op->size();
     const int threads = system.op->threads;
     (void)threads;
+    const char* f = system.free.data();
+    double* ps = p.data();
+    double* rs = r.data();
+    double* xs = x.data();
+    // p = z = J^-1 r, rz = r.z
+    double z0 = 0, z1 = 0, z2 = 0;
+    FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1) \
+                   reduction(+ : z0, z1, z2))
+    for (int i = 0; i < n; ++i) {
+        const double s = f[i] ? inv[i] : 0.0;
+        for (int c = 0; c < 3; ++c) ps[3 * i + c] = rs[3 * i + c] * s;
+        z0 += rs[3 * i] * ps[3 * i];
+        z1 += rs[3 * i + 1] * ps[3 * i + 1];
+        z2 += rs[3 * i + 2] * ps[3 * i + 2];
+    }
+    Column3 rz{z0, z1, z2};
+    const auto converged = [&](int c) { return rn[c] <= goal[c]; };
+
+    while (any(active) && done < cap) {
+        ++done;
+        const Column3 pq = system.apply_dot(p, q, scratch);
+        double alpha[3] = {0, 0, 0};
+        for (int c = 0; c < 3; ++c)
+            if (active[c]) {
+                alpha[c] = rz[c] / pq[c];
+                check_finite(alpha[c], done);
+            }
+        // One pass: x += alpha p, r -= alpha q, the residual norms and r.z with z = J^-1 r.
+        const double* qs = q.data();
+        const double a0 = alpha[0], a1 = alpha[1], a2 = alpha[2];
+        double n0 = 0, n1 = 0, n2 = 0, m0 = 0, m1 = 0, m2 = 0;
+        z0 = z1 = z2 = 0;
+        FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) \
+                       if(threads > 1) reduction(+ : n0, n1, n2, z0, z1, z2) \
+                       reduction(max : m0, m1, m2))
+        for (int i = 0; i < n; ++i) {
+            if (!f[i]) continue;
+            double* xi = xs + 3 * i;
+            double* ri = rs + 3 * i;
+            const double* pi = ps + 3 * i;
+            const double* qi = qs + 3 * i;
+            xi[0] += a0 * pi[0];
+            xi[1] += a1 * pi[1];
+            xi[2] += a2 * pi[2];
+            ri[0] -= a0 * qi[0];
+            ri[1] -= a1 * qi[1];
+            ri[2] -= a2 * qi[2];
+            n0 += ri[0] * ri[0];
+            n1 += ri[1] * ri[1];
+            n2 += ri[2] * ri[2];
+            m0 = std::max(m0, std::abs(ri[0]));
+            m1 = std::max(m1, std::abs(ri[1]));
+            m2 = std::max(m2, std::abs(ri[2]));
+            z0 += ri[0] * ri[0] * inv[i];
+            z1 += ri[1] * ri[1] * inv[i];
+            z2 += ri[2] * ri[2] * inv[i];
+        }
+        rn = norm == ResidualNorm::L2 ? Column3{std::sqrt(n0), std::sqrt(n1), std::sqrt(n2)}
+                                      : Column3{m0, m1, m2};
+        for (int c = 0; c < 3; ++c) {
+            check_finite(rn[c], done);
+            if (active[c] && converged(c)) active[c] = false;
+        }
+        if (after_iteration) after_iteration(rn);
+        if (!any(active)) break;
+        // p = J^-1 r + beta p on the columns still iterating.
+        const Column3 rz_new{z0, z1, z2};
+        double beta[3] = {0, 0, 0};
+        double keep[3] = {0, 0, 0};  // 1 where the column stays put
+        for (int c = 0; c < 3; ++c) {
+            if (active[c]) {
+                beta[c] = rz_new[c] / rz[c];
+                check_finite(beta[c], done);
+                rz[c] = rz_new[c];
+            } else {
+                keep[c] = 1;
+            }
+        }
+        FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1))
+        for (int i = 0; i < n; ++i) {
+            if (!f[i]) continue;
+            for (int c = 0; c < 3; ++c) {
+                double& pc = ps[3 * i + c];
+                pc = keep[c] != 0 ? pc : rs[3 * i + c] * inv[i] + beta[c] * pc;
+            }
+        }
+    }
+    return done;
+}
+
+// z ~ B^-1 r for B = (D - s K) D^-1 (D - s K) (see solver.h): two Jacobi-CG solves with the
+// first-order matrix D - s K, from zero, to kInnerTolerance.
+class FactoredPreconditioner {
+public:
+    FactoredPreconditioner(const LinearSystem& outer, int cap) : cap_(cap) {
+        inner_.op = outer.op;
+        inner_.diagonal = outer.diagonal;
+        inner_.free = outer.free;
+        inner_.lambda_dt = std::sqrt(outer.lambda_dt);
+        inner_.order = 1;
+        inverse_ = inverse_jacobi(inner_);
+        const int n = outer.op->size();
+        rhs_.resize(n, 3);
+        p_.resize(n, 3);
+        q_.resize(n, 3);
+    }
+
+    // z = B^-1 r on the free rows, 0 on the fixed ones; `u` is scratch. Returns the inner
+    // iterations.
+    int apply(const Positions& r, Positions& z, Positions& u) {
+        const int n = inner_.op->size();
+        const char* f = inner_.free.data();
+        const double* d = inner_.diagonal.data();
+        for (int i = 0; i < n; ++i)
+            for (int c = 0; c < 3; ++c) rhs_(i, c) = f[i] ? r(i, c) : 0.0;
+        int iterations = solve_from_zero(u);
+        for (int i = 0; i < n; ++i)
+            for (int c = 0; c < 3; ++c) rhs_(i, c) = f[i] ? d[i] * u(i, c) : 0.0;
+        iterations += solve_from_zero(z);
+        return iterations;
+    }
+
+private:
+    // y = (D - s K)^-1 rhs_ roughly; rhs_ is consumed (it becomes the residual).
+    int solve_from_zero(Positions& y) {
+        y.setZero(inner_.op->size(), 3);
+        Column3 rn = column_norms(rhs_, inner_.free, ResidualNorm::L2, inner_.op->threads);
+        Column3 goal;
+        std::array<bool, 3> active;
+        for (int c = 0; c < 3; ++c) {
+            goal[c] = kInnerTolerance * rn[c];
+            active[c] = rn[c] > 0;
+        }
+        return jacobi_cg(inner_, inverse_.data(), y, rhs_, p_, q_, q_, goal, ResidualNorm::L2, 0,
+                         cap_, active, rn, {});
+    }
+
+    LinearSystem inner_;
+    std::vector<double> inverse_;
+    Positions rhs_, p_, q_;
+    int cap_;
+};
+
+// Iterations of flexible CG (FCG(1)) preconditioned by B, from x with r = b - A x.
+// Same contract as jacobi_cg; inner iterations are added to *inner, and no new outer iteration
+// starts once *inner reaches inner_cap.
+int factored_fcg(const LinearSystem& system, FactoredPreconditioner& preconditioner, Positions& x,
+                 Positions& r, Positions& p, Positions& q, Positions& z, Positions& scratch,
+                 const Column3& goal, ResidualNorm norm, int done, int cap,
+                 std::array<bool, 3>& active, Column3& rn, int* inner, int inner_cap,
+                 const std::function<void(const Column3&)>& after_iteration) {
+    const int n = system.op->size();
+    const int threads = system.op->threads;
+    const std::vector<char>& free = system.free;
+    const char* f = free.data();
+    *inner += preconditioner.apply(r, p, scratch);  // p = z = B^-1 r
+    Column3 pr = column_dots(p, r, free, threads);
+    while (any(active) && done < cap && *inner < inner_cap) {
+        ++done;
+        const Column3 pq = system.apply_dot(p, q, scratch);
+        double alpha[3] = {0, 0, 0};
+        for (int c = 0; c < 3; ++c)
+            if (active[c]) {
+                alpha[c] = pr[c] / pq[c];
+                check_finite(alpha[c], done);
+            }
+        double n0 = 0, n1 = 0, n2 = 0, m0 = 0, m1 = 0, m2 = 0;
+        double* xs = x.data();
+        double* rs = r.data();
+        const double* ps = p.data();
+        const double* qs = q.data();
+        const double a0 = alpha[0], a1 = alpha[1], a2 = alpha[2];
+        (void)threads;
+        FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) \
+                       if(threads > 1) reduction(+ : n0, n1, n2) reduction(max : m0, m1, m2))
+        for (int i = 0; i < n; ++i) {
+            if (!f[i]) continue;
+            double* xi = xs + 3 * i;
+            double* ri = rs + 3 * i;
+            const double* pi = ps + 3 * i;
+            const double* qi = qs + 3 * i;
+            xi[0] += a0 * pi[0];
+            xi[1] += a1 * pi[1];
+            xi[2] += a2 * pi[2];
+            ri[0] -= a0 * qi[0];
+            ri[1] -= a1 * qi[1];
+            ri[2] -= a2 * qi[2];
+            n0 += ri[0] * ri[0];
+            n1 += ri[1] * ri[1];
+            n2 += ri[2] * ri[2];
+            m0 = std::max(m0, std::abs(ri[0]));
+            m1 = std::max(m1, std::abs(ri[1]));
+            m2 = std::max(m2, std::abs(ri[2]));
+        }
+        rn = norm == ResidualNorm::L2 ? Column3{std::sqrt(n0), std::sqrt(n1), std::sqrt(n2)}
+                                      : Column3{m0, m1, m2};
+        for (int c = 0; c < 3; ++c) {
+            check_finite(rn[c], done);
+            if (active[c] && rn[c] <= goal[c]) active[c] = false;
+        }
+        if (after_iteration) after_iteration(rn);
+        if (!any(active)) break;
+        *inner += preconditioner.apply(r, z, scratch);
+        // p = z - (z.q / p.q) p: A-orthogonal to the previous direction even though B^-1 is
+        // only applied approximately.
+        const Column3 zq = column_dots(z, q, free, threads);
+        double beta[3] = {0, 0, 0};
+        double keep[3] = {0, 0, 0};
+        for (int c = 0; c < 3; ++c) {
+            if (active[c]) {
+                beta[c] = -zq[c] / pq[c];
+                check_finite(beta[c], done);
+            } else {
+                keep[c] = 1;
+            }
+        }
+        double* pw = p.data();
+        const double* zs = z.data();
+        double s0 = 0, s1 = 0, s2 = 0;
+        FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1) \
+                       reduction(+ : s0, s1, s2))
+        for (int i = 0; i < n; ++i) {
+            if (!f[i]) continue;
+            for (int c = 0; c < 3; ++c) {
+                double& pc = pw[3 * i + c];
+                pc = keep[c] != 0 ? pc : zs[3 * i + c] + beta[c] * pc;
+            }
+            s0 += pw[3 * i] * rs[3 * i];
+            s1 += pw[3 * i + 1] * rs[3 * i + 1];
+            s2 += pw[3 * i + 2] * rs[3 * i + 2];
+        }
+        pr = {s0, s1, s2};
+    }
+    return done;
+}
+
+}  // namespace
+
+SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& settings) {
+    const int n = system.op->size();
+    const int threads = system.op->threads;
     const std::vector<char>& free = system.free;
     const char* f = free.data();
     const double* d = system.diagonal.data();
@@ -142,144 +432,103 @@ SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& 
         const Column3 norm_eb = column_norms(r, free, settings.norm, threads);
         for (int c = 0; c < 3; ++c) scale[c] = std::max(norm_b[c], norm_eb[c]);
     }
+    Column3 goal;
+    for (int c = 0; c < 3; ++c) goal[c] = scale[c] > 0 ? settings.tolerance * scale[c] : 0.0;
 
-    const std::vector<double> jacobi = system.jacobi_diagonal();
-    std::vector<double> inverse_jacobi(n);
-    for (int i = 0; i < n; ++i) inverse_jacobi[i] = 1.0 / jacobi[i];
-    const double* inv = inverse_jacobi.data();
-
-    auto converged_column = [&](const Column3& rn, int c) {
-        return scale[c] > 0 ? rn[c] <= settings.tolerance * scale[c] : rn[c] == 0;
+    SolveStats stats;
+    std::vector<double> inverse = inverse_jacobi(system);
+    std::unique_ptr<FactoredPreconditioner> factored;
+    Positions z;
+    const auto use_factored = [&] {
+        factored = std::make_unique<FactoredPreconditioner>(system, kInnerCap);
+        z.resize(n, 3);
+        stats.factored = true;
     };
+    bool trial_pending = system.order == 2 && settings.preconditioner == Preconditioner::Automatic;
+    if (system.order == 2 && settings.preconditioner == Preconditioner::Factored) use_factored();
+    // The iteration cap bounds the work too: an inner iteration is one product with K, an
+    // iteration of the L^2 system two, so the inner solves get twice the cap.
+    const int inner_cap = 2 * settings.max_iterations;
+
     auto relative = [&](const Column3& rn) {
         double worst = 0;
         for (int c = 0; c < 3; ++c) worst = std::max(worst, scale[c] > 0 ? rn[c] / scale[c] : rn[c]);
         return worst;
-    };
-    auto check_finite = [&](double v, int iteration) {
-        if (!std::isfinite(v))
-            throw Error("the linear solve produced a non-finite value at iteration " +
-                        std::to_string(iteration) +
-                        "; the input is too degenerate for this operator (try the umbrella "
-                        "operator, or repair the mesh first)");
     };
     Column3 initial{0, 0, 0};
     bool have_initial = false;
     auto fraction_done = [&](const Column3& now) {
         double worst = 1;
         for (int c = 0; c < 3; ++c) {
-            const double goal = settings.tolerance * scale[c];
-            if (!(now[c] > goal) || !(initial[c] > goal)) continue;
-            worst = std::min(worst, std::log(initial[c] / now[c]) / std::log(initial[c] / goal));
+            if (!(now[c] > goal[c]) || !(initial[c] > goal[c])) continue;
+            worst = std::min(worst, std::log(initial[c] / now[c]) / std::log(initial[c] / goal[c]));
         }
         return std::max(0.0, worst);
     };
+    std::function<void(const Column3&)> after_iteration;
+    if (settings.progress)
+        after_iteration = [&](const Column3& rn) { settings.progress(fraction_done(rn)); };
 
     // CG's recursively updated residual drifts from the true one on ill-conditioned systems (the
     // L^2 forms), so convergence is confirmed on the true residual, restarting from the current
     // iterate when it disagrees.
     constexpr int kMaxRestarts = 8;
-    SolveStats stats;
     std::array<bool, 3> active{false, false, false};
     Column3 rn{0, 0, 0};
     for (int restart = 0;; ++restart) {
         system.apply(x, q, scratch);
-        r = b - q;
+        for (int i = 0; i < n; ++i)
+            for (int c = 0; c < 3; ++c) r(i, c) = f[i] ? b(i, c) - q(i, c) : 0.0;
         rn = column_norms(r, free, settings.norm, threads);
         for (int c = 0; c < 3; ++c) {
             check_finite(rn[c], stats.iterations);
-            active[c] = !converged_column(rn, c);
+            active[c] = rn[c] > goal[c];
         }
         if (!have_initial) {
             initial = rn;
             have_initial = true;
         }
-        if (!(active[0] || active[1] || active[2]) || restart == kMaxRestarts ||
-            stats.iterations >= settings.max_iterations)
+        if (!any(active) || restart == kMaxRestarts || stats.iterations >= settings.max_iterations ||
+            stats.inner_iterations >= inner_cap)
             break;
-
-        // p = z = J^-1 r, rz = r.z
-        double* ps = p.data();
-        double* rs = r.data();
-        for (int i = 0; i < n; ++i)
-            for (int c = 0; c < 3; ++c) ps[3 * i + c] = f[i] ? rs[3 * i + c] * inv[i] : 0.0;
-        Column3 rz = column_dots(r, p, free, threads);
-
-        while ((active[0] || active[1] || active[2]) &&
-               stats.iterations < settings.max_iterations) {
-            ++stats.iterations;
-            system.apply(p, q, scratch);
-            const Column3 pq = column_dots(p, q, free, threads);
-            double alpha[3] = {0, 0, 0};
-            for (int c = 0; c < 3; ++c)
-                if (active[c]) {
-                    alpha[c] = rz[c] / pq[c];
-                    check_finite(alpha[c], stats.iterations);
-                }
-            // One pass: x += alpha p, r -= alpha q, the residual norms and r.z with z = J^-1 r.
-            double* xs = x.data();
-            const double* qs = q.data();
-            const double a0 = alpha[0], a1 = alpha[1], a2 = alpha[2];
-            double n0 = 0, n1 = 0, n2 = 0, m0 = 0, m1 = 0, m2 = 0, z0 = 0, z1 = 0, z2 = 0;
-            FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) \
-                           if(threads > 1) reduction(+ : n0, n1, n2, z0, z1, z2) \
-                           reduction(max : m0, m1, m2))
-            for (int i = 0; i < n; ++i) {
-                if (!f[i]) continue;
-                double* xi = xs + 3 * i;
-                double* ri = rs + 3 * i;
-                const double* pi = ps + 3 * i;
-                const double* qi = qs + 3 * i;
-                xi[0] += a0 * pi[0];
-                xi[1] += a1 * pi[1];
-                xi[2] += a2 * pi[2];
-                ri[0] -= a0 * qi[0];
-                ri[1] -= a1 * qi[1];
-                ri[2] -= a2 * qi[2];
-                n0 += ri[0] * ri[0];
-                n1 += ri[1] * ri[1];
-                n2 += ri[2] * ri[2];
-                m0 = std::max(m0, std::abs(ri[0]));
-                m1 = std::max(m1, std::abs(ri[1]));
-                m2 = std::max(m2, std::abs(ri[2]));
-                z0 += ri[0] * ri[0] * inv[i];
-                z1 += ri[1] * ri[1] * inv[i];
-                z2 += ri[2] * ri[2] * inv[i];
-            }
-            rn = settings.norm == ResidualNorm::L2
-                     ? Column3{std::sqrt(n0), std::sqrt(n1), std::sqrt(n2)}
-                     : Column3{m0, m1, m2};
+        if (factored) {
+            stats.iterations = factored_fcg(system, *factored, x, r, p, q, z, scratch, goal,
+                                            settings.norm, stats.iterations,
+                                            settings.max_iterations, active, rn,
+                                            &stats.inner_iterations, inner_cap, after_iteration);
+            continue;
+        }
+        const int trial_end = trial_pending
+                                  ? std::min(settings.max_iterations, stats.iterations + kJacobiTrial)
+                                  : settings.max_iterations;
+        const int before = stats.iterations;
+        const Column3 start = rn;
+        stats.iterations = jacobi_cg(system, inverse.data(), x, r, p, q, scratch, goal,
+                                     settings.norm, stats.iterations, trial_end, active, rn,
+                                     after_iteration);
+        if (trial_pending && stats.iterations == trial_end && any(active) &&
+            trial_end < settings.max_iterations) {
+            trial_pending = false;
+            // Iterations still needed at the geometric rate of the trial, worst column.
+            double remaining = 0;
             for (int c = 0; c < 3; ++c) {
-                check_finite(rn[c], stats.iterations);
-                if (active[c] && converged_column(rn, c)) active[c] = false;
-            }
-            if (settings.progress) settings.progress(fraction_done(rn));
-            if (!(active[0] || active[1] || active[2])) break;
-            // p = J^-1 r + beta p on the columns still iterating.
-            const Column3 rz_new{z0, z1, z2};
-            double beta[3] = {0, 0, 0};
-            double keep[3] = {0, 0, 0};  // 1 where the column stays put
-            for (int c = 0; c < 3; ++c) {
-                if (active[c]) {
-                    beta[c] = rz_new[c] / rz[c];
-                    check_finite(beta[c], stats.iterations);
-                    rz[c] = rz_new[c];
-                } else {
-                    keep[c] = 1;
+                if (!active[c]) continue;
+                if (!(rn[c] < start[c])) {
+                    remaining = INFINITY;
+                    break;
                 }
+                const double rate = std::log(rn[c] / start[c]) / (stats.iterations - before);
+                remaining = std::max(remaining, std::log(goal[c] / rn[c]) / rate);
             }
-            FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1))
-            for (int i = 0; i < n; ++i) {
-                if (!f[i]) continue;
-                for (int c = 0; c < 3; ++c) {
-                    double& pc = ps[3 * i + c];
-                    pc = keep[c] != 0 ? pc : rs[3 * i + c] * inv[i] + beta[c] * pc;
-                }
-            }
+            if (remaining > kJacobiTrial) use_factored();
+            else stats.iterations = jacobi_cg(system, inverse.data(), x, r, p, q, scratch, goal,
+                                              settings.norm, stats.iterations,
+                                              settings.max_iterations, active, rn, after_iteration);
+            --restart;  // the switch (or going on) is not a restart
         }
     }
     stats.residual = relative(rn);
-    stats.converged = !(active[0] || active[1] || active[2]);
+    stats.converged = !any(active);
     return stats;
 }
 

@@ -207,7 +207,8 @@ def case_json():
     src = gen("sphere", "sphere.ply")
     V, F = DM.read_ply(src)
     e = DM.mean_edge(V, F)
-    fields = ["vertices", "faces", "operator", "steps", "lambda_dt", "cg_iterations", "residual",
+    fields = ["vertices", "faces", "operator", "steps", "lambda_dt", "cg_iterations",
+              "inner_iterations", "residual",
               "volume_before", "volume_after", "seconds_engine", "seconds_total"]
     for op, order, ts, expect_ldt in [
             ("curvature", 2, 22.5, 22.5 * e ** 4),       # the default time step, curvature
@@ -246,6 +247,25 @@ def case_json():
           "--threads changed the run")
     with open(work("t1.ply"), "rb") as f1, open(work("t2.ply"), "rb") as f2:
         check(f1.read() == f2.read(), "--threads 2 wrote a different mesh")
+    # --preconditioner: the same step by another path; factored reports its inner iterations
+    ts = ["--time-step", 400]  # heavy enough that auto leaves Jacobi
+    jj = run_json([src, work("pj.ply"), "--preconditioner", "jacobi"] + ts)
+    jf = run_json([src, work("pf.ply"), "--preconditioner", "factored"] + ts)
+    ja = run_json([src, work("pa.ply")] + ts)
+    check(jj["inner_iterations"] == 0 and jf["inner_iterations"] > 0 and ja["inner_iterations"] > 0,
+          "inner_iterations: jacobi %r, factored %r, auto %r"
+          % (jj["inner_iterations"], jf["inner_iterations"], ja["inner_iterations"]))
+    check(jf["cg_iterations"] < jj["cg_iterations"] / 4,
+          "factored took %d outer iterations against jacobi's %d"
+          % (jf["cg_iterations"], jj["cg_iterations"]))
+    Vj, _ = DM.read_ply(work("pj.ply"))
+    Vf, _ = DM.read_ply(work("pf.ply"))
+    gap = max(max(abs(a - b) for a, b in zip(p, q)) for p, q in zip(Vj, Vf))
+    check(gap < 1e-5 * e, "factored and jacobi results differ by %g (mean edge %g)" % (gap, e))
+    print("preconditioners at time step 400: jacobi %d iterations, factored %d + %d inner, "
+          "auto %d + %d inner; largest difference %.3g mean edges"
+          % (jj["cg_iterations"], jf["cg_iterations"], jf["inner_iterations"],
+             ja["cg_iterations"], ja["inner_iterations"], gap / e))
 
 
 # (tool options, engine_reference operator and name=value parameters, mesh, quality)
@@ -403,7 +423,8 @@ def case_errors():
 
 OPTIONS = ["--operator", "--time-step", "--steps", "--order", "--explicit", "--normalized",
            "--no-volume", "--area", "--boundary", "--weights-from-quality", "--invert-weights",
-           "--freeze", "--tolerance", "--max-iterations", "--accept-unconverged", "--threads",
+           "--freeze", "--tolerance", "--max-iterations", "--accept-unconverged", "--preconditioner",
+           "--threads",
            "--json", "--ascii", "--quiet", "--help", "--version"]
 
 

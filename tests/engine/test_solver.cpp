@@ -210,3 +210,97 @@ TEST(Solver, NonFiniteValueThrows) {
     x(3, 1) = std::nan("");
     EXPECT_THROW(fairing::solve(sys, x, fairing::SolveSettings{}), fairing::Error);
 }
+
+namespace {
+
+fairing::SolveStats solve_with(const LinearSystem& sys, Positions& x,
+                               fairing::Preconditioner preconditioner, double tolerance = 1e-11) {
+    fairing::SolveSettings settings;
+    settings.tolerance = tolerance;
+    settings.max_iterations = 20000;
+    settings.preconditioner = preconditioner;
+    return fairing::solve(sys, x, settings);
+}
+
+}  // namespace
+
+TEST(Solver, FactoredPreconditionerSolvesTheSameSystem) {
+    // B = (D - sK) D^-1 (D - sK) only changes the path, not the answer: with hard constraints and
+    // soft weights the L^2 step equals the dense reduced solve.
+    meshes::Rng rng(5);
+    for (Operator op : kOperators) {
+        SCOPED_TRACE(fairing::to_string(op));
+        const SolverCase s = make(op, 40.0);
+        const int n = s.op.size();
+        std::vector<double> w(n, 1.0), diag(s.op.mass);
+        for (int i = 0; i < n; i += 3) {
+            w[i] = 0.2 + 0.8 * rng.uniform();
+            diag[i] = s.op.mass[i] / w[i];
+        }
+        const std::vector<char> free = every_kth_fixed(n, 9);
+        const LinearSystem sys = system_for(s, 2, free, diag);
+        const Positions ref =
+            meshes::dense_implicit_step(s.op, s.mesh.positions, s.lambda_dt, 2, w, free);
+        Positions x = s.mesh.positions;
+        const fairing::SolveStats stats = solve_with(sys, x, fairing::Preconditioner::Factored);
+        EXPECT_TRUE(stats.converged);
+        EXPECT_TRUE(stats.factored);
+        EXPECT_GT(stats.inner_iterations, 0);
+        EXPECT_LT(meshes::max_row_distance(x, ref), 1e-8);
+        for (int i = 0; i < n; ++i)
+            if (!free[i]) EXPECT_EQ(x.row(i), s.mesh.positions.row(i)) << "fixed row " << i;
+    }
+}
+
+TEST(Solver, FactoredOuterIterationsDoNotGrowWithTheStep) {
+    // With D = M, A <= B <= 2A whatever lambda_dt: the outer iteration count stays small and
+    // flat while Jacobi's grows as sqrt(lambda_dt), and the inner (first-order) work grows
+    // slower than Jacobi's.
+    SolverCase s;
+    s.mesh = meshes::radial_noise(meshes::icosphere(4), 0.1, 23);
+    s.he = HalfEdgeMesh::build(s.mesh.positions, s.mesh.triangles);
+    s.op = fairing::assemble(Operator::CurvatureFlow, s.he, s.mesh.positions);
+    const double h = meshes::mean_edge_length(s.mesh.positions, s.mesh.triangles);
+    const int n = s.op.size();
+    int jacobi_unit = 0, jacobi_strong = 0, inner_unit = 0, inner_strong = 0;
+    for (double time_step : {20.0, 320.0}) {
+        s.lambda_dt = time_step * std::pow(h, 4);
+        const LinearSystem sys = system_for(s, 2, std::vector<char>(n, 1), s.op.mass);
+        Positions xj = s.mesh.positions, xf = s.mesh.positions;
+        const fairing::SolveStats j = solve_with(sys, xj, fairing::Preconditioner::Jacobi, 1e-9);
+        const fairing::SolveStats f = solve_with(sys, xf, fairing::Preconditioner::Factored, 1e-9);
+        ASSERT_TRUE(j.converged && f.converged);
+        EXPECT_LE(f.iterations, 16) << "time step " << time_step;
+        EXPECT_LT(meshes::max_row_distance(xj, xf), 1e-6 * h);
+        (time_step == 20.0 ? jacobi_unit : jacobi_strong) = j.iterations;
+        (time_step == 20.0 ? inner_unit : inner_strong) = f.inner_iterations;
+    }
+    EXPECT_GT(jacobi_strong, 2.5 * jacobi_unit);  // ~4x: sqrt(16)
+    EXPECT_LT(inner_strong, 2.5 * inner_unit);    // ~2x: 16^(1/4)
+}
+
+TEST(Solver, AutomaticKeepsJacobiOnLightStepsAndSwitchesOnHeavyOnes) {
+    SolverCase s;
+    s.mesh = meshes::radial_noise(meshes::icosphere(4), 0.1, 23);
+    s.he = HalfEdgeMesh::build(s.mesh.positions, s.mesh.triangles);
+    s.op = fairing::assemble(Operator::CurvatureFlow, s.he, s.mesh.positions);
+    const double h = meshes::mean_edge_length(s.mesh.positions, s.mesh.triangles);
+    const int n = s.op.size();
+    for (double time_step : {0.5, 2000.0}) {
+        s.lambda_dt = time_step * std::pow(h, 4);
+        const LinearSystem sys = system_for(s, 2, std::vector<char>(n, 1), s.op.mass);
+        Positions x = s.mesh.positions, reference = s.mesh.positions;
+        const fairing::SolveStats a = solve_with(sys, x, fairing::Preconditioner::Automatic, 1e-10);
+        solve_with(sys, reference, fairing::Preconditioner::Jacobi, 1e-12);
+        EXPECT_TRUE(a.converged);
+        EXPECT_EQ(a.factored, time_step > 1) << "time step " << time_step;
+        EXPECT_LT(meshes::max_row_distance(x, reference), 1e-7 * h);
+    }
+    // First-order systems have no factored form: Factored asked for falls back to Jacobi.
+    const LinearSystem first = system_for(s, 1, std::vector<char>(n, 1), s.op.mass);
+    Positions x = s.mesh.positions;
+    const fairing::SolveStats stats = solve_with(first, x, fairing::Preconditioner::Factored);
+    EXPECT_TRUE(stats.converged);
+    EXPECT_FALSE(stats.factored);
+    EXPECT_EQ(stats.inner_iterations, 0);
+}

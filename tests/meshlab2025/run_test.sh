@@ -35,7 +35,7 @@ for line in open(sys.argv[1], encoding="utf-8"):
     w = line.split()
     if len(w) == 4 and w[0] == "output":
         out[w[1]] = (w[2], w[3])
-expect = {"iterations": "int", "steps": "int", "vertices_moved": "int", "vertices_fixed": "int",
+expect = {"iterations": "int", "inner_iterations": "int", "steps": "int", "vertices_moved": "int", "vertices_fixed": "int",
           "residual": "double", "volume_before": "double", "volume_after": "double",
           "lambda_dt": "double", "seconds": "double", "engine_seconds": "double"}
 for k, t in expect.items():

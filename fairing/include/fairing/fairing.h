@@ -55,6 +55,13 @@ enum class OpenInvariant {
 
 enum class ResidualNorm { L2, LInfinity };  // Appendix A.2.
 
+// How the conjugate gradients are preconditioned (see solver.h).
+enum class Preconditioner {
+    Automatic,  // Factored for L^2 steps strong enough to profit, Jacobi otherwise
+    Jacobi,     // the diagonal of the system: cheap, iterations grow as sqrt(lambda_dt)
+    Factored,   // L^2 only: two first-order solves per iteration, iterations grow as lambda_dt^1/4
+};
+
 struct Options {
     Operator op = Operator::CurvatureFlow;
     Integration integration = Integration::Implicit;
@@ -81,6 +88,7 @@ struct Options {
     double tolerance = 1e-8;
     ResidualNorm norm = ResidualNorm::L2;
     int max_iterations = 2000;
+    Preconditioner preconditioner = Preconditioner::Automatic;
     // When the iteration cap is hit: false refuses (the input stays as it was); true accepts the
     // last iterate and records a warning with the residual reached.
     bool accept_unconverged = false;
@@ -108,6 +116,10 @@ struct SolveReport {
     int step = 0;
     std::string system;    // "surface" or "boundary curve"
     int iterations = 0;
+    // Factored preconditioner: iterations of the inner first-order solves (each one product with
+    // K, against two for an iteration of an L^2 system).
+    int inner_iterations = 0;
+    bool factored = false;  // the Factored preconditioner was used
     double residual = 0;   // max over x, y, z of ||A X - b|| / ||b|| in the chosen norm
     bool converged = true;
 };
@@ -135,6 +147,7 @@ struct Result {
     int steps = 0;
     std::vector<SolveReport> solves;
     int total_iterations = 0;
+    int total_inner_iterations = 0;  // of the Factored preconditioner's first-order solves
     double max_residual = 0;
     double volume_before = 0;       // sum over closed components
     double volume_after = 0;
