@@ -261,7 +261,6 @@ void Run::restore() {
 
 Result Run::run() {
     const ValidationReport& report = he_.report();
-    result_.positions = mesh_.positions;
     result_.isolated_vertices = report.isolated_vertices;
     result_.zero_area_faces = report.zero_area_faces;
     result_.dropped_faces = report.dropped_faces;
@@ -381,7 +380,9 @@ Result Run::run() {
         report_progress(static_cast<double>(step + 1) / steps);
     }
 
-    // Vertices that may not move keep their input coordinates bit for bit.
+    // Vertices that may not move keep their input coordinates bit for bit. The copy is made only
+    // now, when the solver's vectors are gone, to keep the peak memory down.
+    result_.positions = mesh_.positions;
     int fixed = 0;
     for (int i = 0; i < n_; ++i) {
         if (he_.is_isolated(i)) continue;

@@ -411,7 +411,9 @@ SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& 
     const std::vector<char>& free = system.free;
     const char* f = free.data();
     const double* d = system.diagonal.data();
-    Positions b(n, 3), r(n, 3), p(n, 3), q(n, 3), scratch(n, 3);
+    // scratch holds M^-1 K p between the two products of an L^2 system (and the inner solves'
+    // first solution); first-order solves never touch it.
+    Positions b(n, 3), r(n, 3), p(n, 3), q(n, 3), scratch(system.order == 2 ? n : 0, 3);
 
     // b = D x_old. The right-hand side actually solved on the free rows includes the fixed
     // values' coupling, b_f - A_fc x_c; its norm (or b's, whichever is larger) scales the
