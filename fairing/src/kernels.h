@@ -33,6 +33,14 @@ inline int threads_for(int rows, int requested) {
 #endif
 }
 
+// Calls fn(i) for every row i < n, split over `threads` threads (fn only writes row i).
+template <class Fn>
+void for_each_row(int n, int threads, Fn fn) {
+    (void)threads;
+    FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1))
+    for (int i = 0; i < n; ++i) fn(i);
+}
+
 // (s0, s1, s2) = (K x)_i = sum_j w_ij (x_j - x_i).
 inline void k_row(int i, const double* xs, const int* start, const int* column,
                   const double* weight, double& s0, double& s1, double& s2) {

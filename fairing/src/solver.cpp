@@ -2,6 +2,7 @@
 
 #include "kernels.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <memory>
@@ -105,7 +106,7 @@ Column3 LinearSystem::apply_dot(const Positions& x, Positions& y, Positions& scr
 std::vector<double> LinearSystem::jacobi_diagonal() const {
     const int n = op->size();
     std::vector<double> d(n);
-    for (int i = 0; i < n; ++i) {
+    detail::for_each_row(n, op->threads, [&](int i) {
         double extra = 0;
         if (order == 1) {
             extra = -op->diagonal(i);
@@ -120,7 +121,7 @@ std::vector<double> LinearSystem::jacobi_diagonal() const {
         }
         const double a = diagonal[i] + lambda_dt * extra;
         d[i] = a > 0 ? a : diagonal[i];
-    }
+    });
     return d;
 }
 
@@ -280,11 +281,14 @@ public:
         const int n = inner_.op->size();
         const char* f = inner_.free.data();
         const double* d = inner_.diagonal.data();
-        for (int i = 0; i < n; ++i)
+        const int threads = inner_.op->threads;
+        detail::for_each_row(n, threads, [&](int i) {
             for (int c = 0; c < 3; ++c) rhs_(i, c) = f[i] ? r(i, c) : 0.0;
+        });
         int iterations = solve_from_zero(u);
-        for (int i = 0; i < n; ++i)
+        detail::for_each_row(n, threads, [&](int i) {
             for (int c = 0; c < 3; ++c) rhs_(i, c) = f[i] ? d[i] * u(i, c) : 0.0;
+        });
         iterations += solve_from_zero(z);
         return iterations;
     }
@@ -418,11 +422,8 @@ SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& 
     // b = D x_old. The right-hand side actually solved on the free rows includes the fixed
     // values' coupling, b_f - A_fc x_c; its norm (or b's, whichever is larger) scales the
     // stopping rule. Without fixed rows the two are the same and the product is skipped.
-    bool any_fixed = false;
-    for (int i = 0; i < n; ++i) {
-        b.row(i) = d[i] * x.row(i);
-        any_fixed = any_fixed || !f[i];
-    }
+    detail::for_each_row(n, threads, [&](int i) { b.row(i) = d[i] * x.row(i); });
+    const bool any_fixed = std::find(free.begin(), free.end(), 0) != free.end();
     const Column3 norm_b = column_norms(b, free, settings.norm, threads);
     Column3 scale = norm_b;
     if (any_fixed) {
@@ -479,8 +480,9 @@ SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& 
     Column3 rn{0, 0, 0};
     for (int restart = 0;; ++restart) {
         system.apply(x, q, scratch);
-        for (int i = 0; i < n; ++i)
+        detail::for_each_row(n, threads, [&](int i) {
             for (int c = 0; c < 3; ++c) r(i, c) = f[i] ? b(i, c) - q(i, c) : 0.0;
+        });
         rn = column_norms(r, free, settings.norm, threads);
         for (int c = 0; c < 3; ++c) {
             check_finite(rn[c], stats.iterations);
