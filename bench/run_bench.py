@@ -10,6 +10,14 @@ t = T_DIFF (dimensionless) below. On a regular mesh of edge h:
   MeshLab Laplacian Smooth (cotangent, default)             steps = t / (sqrt3/(1+4 sqrt3))
   MeshLab ScaleDependent Laplacian (Fujiwara)               delta = 4 t h^2 / steps
   OpenMesh JacobiLaplaceSmootherT C0 (uniform, 0.5 damping) iterations = t / (1/8)
+
+MeshLab's filters (and our plugin) are timed in-process by meshlab_filter_timer (applyFilter
+only, bench/tools/meshlab_filter_timer.cpp); on the smallest mesh of the run its outputs are
+compared byte for byte with meshlabserver's for the same filters and parameters.
+
+Options: --quick (no >= 1M-face meshes), --only NAME[,NAME] (only these meshes, e.g. torus_10k),
+--results DIR (where runs.jsonl and results.md go; default bench/results), --micro-json FILE
+(this run's Google Benchmark JSON, for the targets table), --repeat N (timer repetitions).
 """
 import argparse, json, math, os, platform, re, shutil, subprocess, sys, tarfile, time
 
@@ -23,15 +31,25 @@ p.add_argument("--root", required=True)
 p.add_argument("--build", required=True)
 p.add_argument("--cache", required=True)
 p.add_argument("--quick", action="store_true")
+p.add_argument("--only", default="", help="comma-separated mesh names (torus_10k, torus_100k, bunny_75k, "
+               "bunny_loop1_302k, torus_1m, bunny_loop2_1.2m)")
+p.add_argument("--results", default="", help="output directory (default: <root>/bench/results)")
+p.add_argument("--micro-json", default="", help="Google Benchmark JSON of this run (targets b)")
+p.add_argument("--repeat", type=int, default=1, help="meshlab_filter_timer --repeat (median)")
 a = p.parse_args()
+only = [x for x in a.only.split(",") if x]
 root, build, cache = a.root, a.build, a.cache
 bin_b = os.path.join(build, "bench", "bin")
 tool = os.path.join(bin_b, "fairing-bench-tool")
 cli = os.path.join(build, "main", "bin", "implicit-fairing")
 mls = os.path.join(root, "scripts", "meshlabserver.sh")
+timer = os.path.join(bin_b, "meshlab_filter_timer")
+ML_PLUGINS = "/usr/lib/x86_64-linux-gnu/meshlab/plugins"
+unsharp = os.path.join(ML_PLUGINS, "libfilter_unsharp.so")   # Laplacian, Taubin, ScaleDependent
+ours_so = os.path.join(build, "main", "meshlab2020", "plugins", "libfilter_implicit_fairing.so")
 meshes_dir = os.path.join(cache, "bench-meshes")
 runs_dir = os.path.join(cache, "bench-runs")
-results = os.path.join(root, "bench", "results")
+results = os.path.abspath(a.results) if a.results else os.path.join(root, "bench", "results")
 os.makedirs(meshes_dir, exist_ok=True)
 os.makedirs(runs_dir, exist_ok=True)
 os.makedirs(results, exist_ok=True)
@@ -92,15 +110,19 @@ def prepare(name, make_clean):
     return dict(name=name, clean=clean, noisy=noisy, **info)
 
 
-meshes = []
-meshes.append(prepare("torus_10k", lambda o: run([tool, "torus", "10000", o], timed=False)))
-meshes.append(prepare("torus_100k", lambda o: run([tool, "torus", "100000", o], timed=False)))
-b = bunny_off()
-meshes.append(prepare("bunny_75k", lambda o: run([tool, "convert", b, o], timed=False)))
-meshes.append(prepare("bunny_loop1_302k", lambda o: run([tool, "loop", b, o, "1"], timed=False)))
-if not a.quick:
-    meshes.append(prepare("torus_1m", lambda o: run([tool, "torus", "1000000", o], timed=False)))
-    meshes.append(prepare("bunny_loop2_1.2m", lambda o: run([tool, "loop", b, o, "2"], timed=False)))
+MESHES = [  # name, big (>= 1M faces), how to make the clean mesh
+    ("torus_10k", False, lambda o: run([tool, "torus", "10000", o], timed=False)),
+    ("torus_100k", False, lambda o: run([tool, "torus", "100000", o], timed=False)),
+    ("bunny_75k", False, lambda o: run([tool, "convert", bunny_off(), o], timed=False)),
+    ("bunny_loop1_302k", False, lambda o: run([tool, "loop", bunny_off(), o, "1"], timed=False)),
+    ("torus_1m", True, lambda o: run([tool, "torus", "1000000", o], timed=False)),
+    ("bunny_loop2_1.2m", True, lambda o: run([tool, "loop", bunny_off(), o, "2"], timed=False)),
+]
+unknown = set(only) - {n for n, _, _ in MESHES}
+if unknown:
+    sys.exit("run_bench: unknown mesh(es) in --only: %s" % ", ".join(sorted(unknown)))
+meshes = [prepare(n, mk) for n, big, mk in MESHES
+          if ((n in only) if only else not (big and a.quick))]
 
 
 # ------------------------------------------------------------------ .mlx scripts
@@ -112,9 +134,11 @@ def mlx(filter_name, params):
     return "\n".join(s)
 
 
+# A filter is (plugin .so, filter name, [(name, type, value, extra .mlx attributes)]): the same
+# list gives the .mlx for meshlabserver and the name=value arguments of meshlab_filter_timer.
 def ours_mlx(op_menu, time_step, order):
     enum = lambda n, k: ' enum_cardinality="%d"%s' % (n, "".join(' enum_val%d="%s"' % (i, v) for i, v in enumerate(k)))
-    return mlx(op_menu, [
+    return (ours_so, op_menu, [
         ("timeStep", "RichFloat", repr(time_step), ""), ("stepSmoothNum", "RichInt", 1, ""),
         ("order", "RichEnum", order - 1, enum(2, ["L (first order)", "L² (second order, recommended)"])),
         ("integration", "RichEnum", 0, enum(3, ["Implicit", "Explicit", "Explicit, normalized operator (section 5.5)"])),
@@ -127,17 +151,17 @@ def ours_mlx(op_menu, time_step, order):
 
 
 def laplacian_mlx(steps):
-    return mlx("Laplacian Smooth", [("stepSmoothNum", "RichInt", steps, ""), ("Boundary", "RichBool", "true", ""),
-                                    ("cotangentWeight", "RichBool", "true", ""), ("Selected", "RichBool", "false", "")])
+    return (unsharp, "Laplacian Smooth", [("stepSmoothNum", "RichInt", steps, ""), ("Boundary", "RichBool", "true", ""),
+                                          ("cotangentWeight", "RichBool", "true", ""), ("Selected", "RichBool", "false", "")])
 
 
 def taubin_mlx(steps, lam=0.5, mu=-0.53):
-    return mlx("Taubin Smooth", [("lambda", "RichFloat", lam, ""), ("mu", "RichFloat", mu, ""),
-                                 ("stepSmoothNum", "RichInt", steps, ""), ("Selected", "RichBool", "false", "")])
+    return (unsharp, "Taubin Smooth", [("lambda", "RichFloat", repr(lam), ""), ("mu", "RichFloat", repr(mu), ""),
+                                       ("stepSmoothNum", "RichInt", steps, ""), ("Selected", "RichBool", "false", "")])
 
 
 def sd_mlx(steps, delta):
-    return mlx("ScaleDependent Laplacian Smooth", [("stepSmoothNum", "RichInt", steps, ""),
+    return (unsharp, "ScaleDependent Laplacian Smooth", [("stepSmoothNum", "RichInt", steps, ""),
                ("delta", "RichAbsPerc", repr(delta), ' min="0" max="%r"' % (delta * 100)),
                ("Selected", "RichBool", "false", "")])
 
@@ -155,32 +179,58 @@ def record(m, method, group, out_path, seconds, wall, rss, extra=None, metrics=T
     return r
 
 
-def ours_cli(m, group, op, order, ts, threads=1, metrics=True, tag=None):
-    out = os.path.join(runs_dir, "%s_cli_%s%d_%g_t%d.ply" % (m["name"], op, order, ts, threads))
+def ours_cli(m, group, op, order, ts, threads=1, metrics=True, tag=None, preconditioner="auto"):
+    out = os.path.join(runs_dir, "%s_cli_%s%d_%g_t%d_%s.ply" % (m["name"], op, order, ts, threads, preconditioner))
     env = dict(os.environ, OMP_NUM_THREADS=str(threads))
     o, _, wall, rss = run([cli, m["noisy"], out, "--operator", op, "--order", str(order), "--time-step",
-                           repr(ts), "--threads", str(threads), "--json", "-q"], env=env)
+                           repr(ts), "--threads", str(threads), "--preconditioner", preconditioner,
+                           "--json", "-q"], env=env)
     j = jline(o)
-    name = tag or "ours CLI %s L%s ts=%g" % (op, "²" if order == 2 else "", ts)
+    name = tag or "ours CLI %s L%s ts=%g%s" % (op, "²" if order == 2 else "", ts,
+                                            "" if preconditioner == "auto" else ", " + preconditioner)
     return record(m, name, group, out, j["seconds_engine"], wall, rss,
-                  dict(cg_iterations=j.get("cg_iterations"), threads=threads, seconds_total=j.get("seconds_total")),
-                  metrics)
+                  dict(cg_iterations=j.get("cg_iterations"), inner_iterations=j.get("inner_iterations"),
+                       threads=threads, seconds_total=j.get("seconds_total"), order=order, time_step=ts,
+                       op=op, preconditioner=preconditioner), metrics)
 
 
-def meshlab(m, group, name, script_text, metrics=True):
+def timer_args(flt):
+    so, fname, params = flt
+    return [so, fname] + ["%s=%s" % (n, v) for n, _, v, _ in params]
+
+
+def meshlab(m, group, name, flt, metrics=True, out=None):
+    """One MeshLab filter (Debian's or our plugin) timed in-process: seconds = applyFilter only."""
+    safe = re.sub(r"[^A-Za-z0-9]+", "_", name)
+    out = out or os.path.join(runs_dir, "%s_%s.ply" % (m["name"], safe))
+    so, fname, _ = flt
+    args = timer_args(flt)
+    o, e, wall, rss = run([timer] + args[:2] + [m["noisy"], out] + args[2:] + ["--repeat", str(a.repeat)],
+                          env=dict(os.environ, OMP_NUM_THREADS="1", QT_QPA_PLATFORM="offscreen"))
+    j = jline(o)
+    extra = dict(filter=fname, all=j["all"])
+    for k in ("engine_seconds", "overhead", "cg_iterations"):
+        if k in j:
+            extra[k] = j[k]
+    return record(m, name, group, out, j["seconds"], wall, rss, extra, metrics)
+
+
+def meshlabserver_check(m, name, flt):
+    """Runs the filter in Debian's meshlabserver (with our plugin in its plugin folder) and compares
+    its output PLY byte for byte with meshlab_filter_timer's, same input and parameters."""
     safe = re.sub(r"[^A-Za-z0-9]+", "_", name)
     script = os.path.join(runs_dir, "%s_%s.mlx" % (m["name"], safe))
-    open(script, "w").write(script_text)
-    out = os.path.join(runs_dir, "%s_%s.ply" % (m["name"], safe))
-    o, e, wall, rss = run([mls, "-i", m["noisy"], "-o", out, "-s", script], env=env_ml)
-    extra = {}
-    t = re.search(r"Time: ([0-9.eE+-]+) s in the engine, ([0-9.eE+-]+) s in total", o + e)
-    if t:
-        extra = dict(plugin_engine=float(t.group(1)), plugin_total=float(t.group(2)))
-    it = re.search(r"CG iterations in total: (\d+)", o + e)
-    if it:
-        extra["cg_iterations"] = int(it.group(1))
-    return record(m, name, group, out, wall, wall, rss, extra, metrics)
+    so, fname, params = flt
+    open(script, "w").write(mlx(fname, params))
+    out_ms = os.path.join(runs_dir, "%s_%s_meshlabserver.ply" % (m["name"], safe))
+    out_ti = os.path.join(runs_dir, "%s_%s_timer.ply" % (m["name"], safe))
+    _, _, wall, rss = run([mls, "-i", m["noisy"], "-o", out_ms, "-s", script],
+                          env=dict(env_ml, OMP_NUM_THREADS="1", FAIRING_PLUGIN=ours_so))
+    r = meshlab(m, "check", "timer: " + name, flt, metrics=False, out=out_ti)
+    r["meshlabserver_wall"] = wall
+    r["identical"] = open(out_ms, "rb").read() == open(out_ti, "rb").read()
+    log("%-18s %s: meshlabserver and timer outputs %s" % (m["name"], name, "IDENTICAL" if r["identical"] else "DIFFER"))
+    return r
 
 
 def cgal(m, group, t):
@@ -204,6 +254,21 @@ def engine_memory(m, ts):
                   dict(extra_bytes_per_vertex=j["extra_peak_bytes_per_vertex"], cg_iterations=j["cg_iterations"]), False)
 
 
+def micro_records():
+    """This run's Google Benchmark JSON (run.sh --micro), kept in runs.jsonl for the targets table."""
+    if not a.micro_json or not os.path.exists(a.micro_json):
+        return []
+    d = json.load(open(a.micro_json))
+    out = []
+    for b_ in d["benchmarks"]:
+        if b_.get("run_type") == "aggregate":
+            continue
+        scale = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}[b_.get("time_unit", "ns")]
+        out.append(dict(micro=b_["name"], real_ms=b_["real_time"] * scale, cpu_ms=b_["cpu_time"] * scale,
+                        vertices=b_.get("vertices", 0), cg_iterations=b_.get("cg_iterations")))
+    return out
+
+
 def write_results():
   meta = dict(machine=platform.node(), cpu=next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.startswith("model name")), "?"),
             cores=os.cpu_count(), mem_gb=round(os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES") / 2**30),
@@ -211,27 +276,36 @@ def write_results():
             date=time.strftime("%Y-%m-%d %H:%M"), t_diff=T_DIFF, om_iters=OM_ITERS, ml_steps=ML_STEPS,
             git=subprocess.run(["git", "-C", root, "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip(),
             dirty=bool(subprocess.run(["git", "-C", root, "status", "--porcelain", "fairing"], capture_output=True, text=True).stdout.strip()),
-            command="bench/run.sh " + (" --quick" if a.quick else ""))
+            command="bench/run.sh" + (" --quick" if a.quick else "") + (" --only " + a.only if only else "")
+                    + ("" if a.micro_json else " --no-micro") + (" --repeat %d" % a.repeat if a.repeat != 1 else ""),
+            repeat=a.repeat, complete=done)
   with open(os.path.join(results, "runs.jsonl"), "w") as f:
     f.write(json.dumps(dict(meta=meta)) + "\n")
     for r in records:
         f.write(json.dumps(r) + "\n")
+    for r in micro:
+        f.write(json.dumps(r) + "\n")
   subprocess.run([sys.executable, os.path.join(root, "bench", "report.py"), os.path.join(results, "runs.jsonl"),
                   os.path.join(results, "results.md")], check=True)
-  log("%.1f min so far; tables in bench/results/results.md" % meta["minutes"])
+  log("%.1f min so far; tables in %s" % (meta["minutes"], os.path.join(results, "results.md")))
 
 
 # ------------------------------------------------------------------ the runs
 started = time.time()
 load0 = os.getloadavg()
+micro = micro_records()
+done = False
 t = T_DIFF
-for m in meshes:
+for mi, m in enumerate(meshes):
     log("mesh %s: %d vertices, %d faces, mean edge %.4g" % (m["name"], m["vertices"], m["faces"], m["mean_edge"]))
     h2 = m["mean_edge"] ** 2
     big = m["faces"] > 500000
-    # baseline: MeshLab loading + saving the mesh (a 0-step Laplacian), to subtract from MeshLab runs
-    meshlab(m, "baseline", "MeshLab load+save only", laplacian_mlx(0), metrics=False)
-    # equal diffusion time
+    if mi == 0:  # the timer against meshlabserver, byte for byte, on the smallest mesh
+        meshlabserver_check(m, "MeshLab Laplacian Smooth (cot) ×%d" % ML_STEPS, laplacian_mlx(ML_STEPS))
+        meshlabserver_check(m, "MeshLab Taubin Smooth ×10", taubin_mlx(10))
+        meshlabserver_check(m, "MeshLab ScaleDependent Laplacian ×%d" % ML_STEPS, sd_mlx(ML_STEPS, 4 * t * h2 / ML_STEPS))
+        meshlabserver_check(m, "ours plugin curvature L ts=%g" % (6 * t), ours_mlx("Implicit Fairing: Curvature Flow", 6 * t, 1))
+    # equal diffusion time (targets a, c, e)
     ours_cli(m, "equal-time", "curvature", 1, 6 * t)
     ours_cli(m, "equal-time", "curvature", 1, 6 * t, threads=2, metrics=False, tag="ours CLI curvature L ts=%g, 2 threads" % (6 * t))
     ours_cli(m, "equal-time", "umbrella", 1, 4 * t)
@@ -241,25 +315,21 @@ for m in meshes:
     meshlab(m, "equal-time", "MeshLab Laplacian Smooth (cot) ×%d" % ML_STEPS, laplacian_mlx(ML_STEPS))
     meshlab(m, "equal-time", "MeshLab ScaleDependent Laplacian ×%d" % ML_STEPS, sd_mlx(ML_STEPS, 4 * t * h2 / ML_STEPS))
     openmesh(m, "equal-time", OM_ITERS)
-    # strength: a step 16x stronger
+    # strength (target d): a step 16x stronger; the unit L step is the equal-time row above
     ours_cli(m, "strength", "curvature", 1, 96 * t, metrics=False)
-    if not big:  # curvature L² on >= 1M faces needs ~1000 plain Jacobi-PCG iterations (micro.md)
-        ours_cli(m, "strength", "curvature", 2, 22.5, metrics=False)
-        ours_cli(m, "strength", "curvature", 2, 360, metrics=False)
-    # denoising at the filters' defaults and a small sweep (best of each kept in the table)
-    for ts in (2.5, 10, 40):
-        if big and ts != 10:
-            continue
+    ours_cli(m, "strength", "curvature", 2, 22.5, metrics=False)
+    ours_cli(m, "strength", "curvature", 2, 360, metrics=False)
+    if not big:  # reference: plain Jacobi PCG (on >= 1M faces L² at 360 exceeds the 2000-iteration cap)
+        ours_cli(m, "strength", "curvature", 2, 22.5, metrics=False, preconditioner="jacobi")
+        ours_cli(m, "strength", "curvature", 2, 360, metrics=False, preconditioner="jacobi")
+    # denoising (target f) at the filters' defaults and a small sweep (best of each kept)
+    for ts in ((10, 40) if big else (2.5, 10, 40)):
         ours_cli(m, "denoise", "umbrella", 2, ts)
-    for ts in (5.625, 22.5, 90):
-        if big:
-            continue
+    for ts in ((22.5,) if big else (5.625, 22.5, 90)):
         ours_cli(m, "denoise", "curvature", 2, ts)
     meshlab(m, "denoise", "ours plugin umbrella L² ts=10", ours_mlx("Implicit Fairing: Umbrella Diffusion", 10.0, 2))
-    for steps in (10, 30, 100):
-        if big and steps != 10:
-            continue
+    for steps in ((10, 30) if big else (10, 30, 100)):
         meshlab(m, "denoise", "MeshLab Taubin Smooth ×%d" % steps, taubin_mlx(steps))
-    engine_memory(m, 6 * t)
+    engine_memory(m, 6 * t)  # target e, memory
+    done = mi + 1 == len(meshes)
     write_results()
-
