@@ -121,7 +121,9 @@ double explicit_bound(const SparseOperator& op, const std::vector<char>& free, i
 class Run {
 public:
     Run(const TriangleMesh& mesh, const Constraints& constraints, const Options& options)
-        : mesh_(mesh), options_(options), he_(HalfEdgeMesh::build(mesh.positions, mesh.triangles)) {
+        : mesh_(mesh),
+          options_(options),
+          he_(HalfEdgeMesh::build(mesh.positions, mesh.triangles, options.threads)) {
         n_ = static_cast<int>(mesh.positions.rows());
         weight_.assign(n_, 1.0);
         if (!constraints.weights.empty()) weight_ = constraints.weights;
@@ -293,7 +295,7 @@ Result Run::run() {
     const Eigen::RowVector3d origin = 0.5 * (lo + hi);
     x_ = mesh_.positions.rowwise() - origin;
 
-    const double mean_edge = mean_edge_length(he_, x_);
+    const double mean_edge = mean_edge_length(he_, x_, options_.threads);
     const bool has_units = options_.op != Operator::Umbrella && !options_.normalized;
     // L is in 1/length^2 (L^2 in 1/length^4) for all but the dimensionless operators.
     const double length_unit = std::pow(mean_edge, 2 * options_.order);
@@ -319,7 +321,7 @@ Result Run::run() {
     if (virtual_mode_) {
         work_faces = he_.faces();
         add_virtual_vertices(he_, x_, work_faces);
-        work_ = HalfEdgeMesh::build(x_, work_faces);
+        work_ = HalfEdgeMesh::build(x_, work_faces, options_.threads);
         free_surface.resize(x_.rows(), 1);
     }
     const HalfEdgeMesh& work = virtual_mode_ ? work_ : he_;
@@ -353,12 +355,14 @@ Result Run::run() {
     AssemblyReport assembly, worst;
     for (int step = 0; step < steps; ++step) {
         if (step == 0 || recompute) {
-            surface = assemble(options_.op, work, x_, options_.normalized, &assembly);
+            surface = assemble(options_.op, work, x_, options_.normalized, &assembly,
+                               options_.threads);
             worst.zero_area_faces = std::max(worst.zero_area_faces, assembly.zero_area_faces);
             worst.floored_edges = std::max(worst.floored_edges, assembly.floored_edges);
             worst.massless_vertices = std::max(worst.massless_vertices, assembly.massless_vertices);
             needle_faces_ = std::max(needle_faces_, assembly.needle_faces);
-            if (boundary == BoundaryMode::SmoothCurve) curve = assemble_boundary_curve(he_, x_);
+            if (boundary == BoundaryMode::SmoothCurve)
+                curve = assemble_boundary_curve(he_, x_, options_.threads);
             surface.threads = detail::threads_for(surface.size(), options_.threads);
             curve.threads = detail::threads_for(curve.size(), options_.threads);
         }

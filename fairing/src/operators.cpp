@@ -2,43 +2,108 @@
 
 #include "geometry.h"
 #include "kernels.h"
+#include "parallel.h"
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
 
 namespace fairing {
 namespace {
 
-// Undirected edge (i, j) with its weight, one per edge of the mesh.
-struct WeightedEdge {
-    int i, j;
-    double w;
-};
-
-SparseOperator from_edges(int n, const std::vector<WeightedEdge>& edges,
-                          std::vector<double> mass) {
-    SparseOperator op;
-    op.row_start.assign(n + 1, 0);
-    for (const WeightedEdge& e : edges) {
-        ++op.row_start[e.i + 1];
-        ++op.row_start[e.j + 1];
-    }
-    for (int i = 0; i < n; ++i) op.row_start[i + 1] += op.row_start[i];
-    op.column.resize(op.row_start[n]);
-    op.weight.resize(op.row_start[n]);
-    std::vector<int> fill(op.row_start.begin(), op.row_start.end() - 1);
-    for (const WeightedEdge& e : edges) {
-        op.column[fill[e.i]] = e.j;
-        op.weight[fill[e.i]++] = e.w;
-        op.column[fill[e.j]] = e.i;
-        op.weight[fill[e.j]++] = e.w;
-    }
-    op.mass = std::move(mass);
-    return op;
-}
-
 // Edges shorter than this fraction of the mean edge are lengthened to it where 1/|e| is taken:
 // duplicated vertices would otherwise give infinite weights.
 constexpr double kEdgeFloor = 1e-4;
+
+// The mean edge length adds one partial sum per chunk of this many half-edges, then the partial
+// sums in order: the result depends on the mesh only, not on the number of threads (and on a mesh
+// of one chunk it is the plain running sum).
+constexpr int kLengthChunk = 1 << 14;
+
+int length_chunks(const HalfEdgeMesh& mesh) {
+    return (mesh.num_half_edges() + kLengthChunk - 1) / kLengthChunk;
+}
+
+// The representative of an undirected edge is its smaller half-edge.
+bool is_representative(const HalfEdgeMesh& mesh, int h) {
+    return mesh.twin(h) < 0 || mesh.twin(h) > h;
+}
+
+// Called by every thread of a region: sum[c] and count[c] of the edges of chunk c. No barrier.
+void edge_length_chunks(const HalfEdgeMesh& mesh, const Positions& positions, double* sum,
+                        int* count) {
+    const int num_half_edges = mesh.num_half_edges();
+    const int chunks = length_chunks(mesh);
+    FAIRING_PRAGMA(omp for schedule(static) nowait)
+    for (int c = 0; c < chunks; ++c) {
+        double s = 0;
+        int k = 0;
+        for (int h = c * kLengthChunk; h < std::min(num_half_edges, (c + 1) * kLengthChunk); ++h) {
+            if (!is_representative(mesh, h)) continue;
+            s += (positions.row(mesh.to(h)) - positions.row(mesh.from(h))).norm();
+            ++k;
+        }
+        sum[c] = s;
+        count[c] = k;
+    }
+}
+
+double mean_of_chunks(const std::vector<double>& sum, const std::vector<int>& count) {
+    double total = 0;
+    long long edges = 0;
+    for (std::size_t c = 0; c < sum.size(); ++c) {
+        total += sum[c];
+        edges += count[c];
+    }
+    return edges > 0 ? total / static_cast<double>(edges) : 0.0;
+}
+
+// Called by every thread of a region: the rows of K for the undirected edges whose half-edge h
+// (from i, to j) satisfies is_edge(h), in increasing h in every row, as a serial scatter over h
+// gives them. fill(h, i, j, a, b) then writes the entries a of row i and b of row j beyond their
+// column; op.column and op.weight are sized by one thread in between, which also calls
+// sized(entries). Ends with a barrier.
+template <class IsEdge, class Sized, class Fill>
+void scatter_rows(const HalfEdgeMesh& mesh, IsEdge is_edge, Sized sized, Fill fill,
+                  detail::BucketFill& rows, const detail::Team& team, SparseOperator& op) {
+    const int n = mesh.num_vertices();
+    const int f0 = team.begin(mesh.num_faces()), f1 = team.end(mesh.num_faces());
+    const std::vector<Triangle>& faces = mesh.faces();
+    int* position = rows.clear(team, n);
+    for (int f = f0; f < f1; ++f)
+        for (int k = 0; k < 3; ++k)
+            if (is_edge(3 * f + k)) {
+                ++position[faces[f][k]];
+                ++position[faces[f][(k + 1) % 3]];
+            }
+    rows.to_positions(team, op.row_start.data());
+    FAIRING_PRAGMA(omp single)
+    {
+        op.column.resize(op.row_start[n]);
+        op.weight.resize(op.row_start[n]);
+        sized(op.row_start[n]);
+    }
+    for (int f = f0; f < f1; ++f)
+        for (int k = 0; k < 3; ++k)
+            if (is_edge(3 * f + k)) {
+                const int i = faces[f][k], j = faces[f][(k + 1) % 3];
+                const int a = position[i]++, b = position[j]++;
+                op.column[a] = j;
+                op.column[b] = i;
+                fill(3 * f + k, i, j, a, b);
+            }
+    detail::barrier();
+}
+
+// Insertion sort of a vertex's few faces.
+void sort_small(std::vector<int>& v) {
+    for (std::size_t i = 1; i < v.size(); ++i) {
+        const int x = v[i];
+        std::size_t j = i;
+        for (; j > 0 && v[j - 1] > x; --j) v[j] = v[j - 1];
+        v[j] = x;
+    }
+}
 
 }  // namespace
 
@@ -70,128 +135,218 @@ void SparseOperator::apply_l(const Positions& x, Positions& y) const {
     });
 }
 
-double mean_edge_length(const HalfEdgeMesh& mesh, const Positions& positions) {
-    double sum = 0;
-    long long count = 0;
-    for (int h = 0; h < mesh.num_half_edges(); ++h) {
-        if (mesh.twin(h) >= 0 && mesh.twin(h) < h) continue;
-        sum += (positions.row(mesh.to(h)) - positions.row(mesh.from(h))).norm();
-        ++count;
-    }
-    return count > 0 ? sum / static_cast<double>(count) : 0.0;
+double mean_edge_length(const HalfEdgeMesh& mesh, const Positions& positions, int threads) {
+    const int team_size = detail::threads_for(mesh.num_vertices(), threads);
+    (void)team_size;
+    std::vector<double> sum(length_chunks(mesh));
+    std::vector<int> count(sum.size());
+    FAIRING_PRAGMA(omp parallel num_threads(team_size) if(team_size > 1))
+    edge_length_chunks(mesh, positions, sum.data(), count.data());
+    return mean_of_chunks(sum, count);
 }
 
+// One parallel region: per-face cotangents, the rows of K by a counting sort on the edges' end
+// points (each edge weighed once, in increasing order, where it is scattered), then the mass
+// row by row. Each vertex so adds its terms in the order of the serial loops (edges by
+// increasing half-edge, faces by increasing index for the area) on any number of threads.
 SparseOperator assemble(Operator op, const HalfEdgeMesh& mesh, const Positions& positions,
-                        bool normalized, AssemblyReport* report) {
+                        bool normalized, AssemblyReport* report, int threads) {
     const int n = mesh.num_vertices();
+    const int num_faces = mesh.num_faces();
     AssemblyReport local;
     AssemblyReport& r = report ? *report : local;
     r = AssemblyReport{};
+    const bool curvature = op == Operator::CurvatureFlow;
+    const bool scale_dependent = op == Operator::ScaleDependent;
+    const bool area_mass = curvature && !normalized;
+    const int team_size = detail::threads_for(n, threads);
+    (void)team_size;
 
-    // Cotangents of the corners opposite each half-edge (eq. 14), zero on faces of zero area,
-    // which the paper says to skip (section 5.4).
-    std::vector<double> cot_opposite;
-    std::vector<double> area;
-    if (op == Operator::CurvatureFlow) {
-        cot_opposite.assign(mesh.num_half_edges(), 0.0);
-        area.assign(n, 0.0);
-        for (int f = 0; f < mesh.num_faces(); ++f) {
-            const Triangle& t = mesh.faces()[f];
+    // Cotangents of the corners opposite each half-edge (eq. 14) and twice the area of each
+    // face, zero on faces of zero area, which the paper says to skip (section 5.4).
+    const std::vector<Triangle>& faces = mesh.faces();
+    // Plain arrays: each thread first touches its own part, rather than one thread zeroing all.
+    std::unique_ptr<double[]> cot_opposite(new double[curvature ? mesh.num_half_edges() : 0]);
+    // The area around each vertex adds its faces in increasing order. One thread scatters them
+    // from the face pass. Several gather them row by row: per entry of K, the face around the
+    // row's vertex that holds the edge's half-edge leaving that vertex (-1 for none, -2 - h when
+    // both half-edges leave it, the orientation being inconsistent), sorted.
+    const bool gather_area = area_mass && team_size > 1;
+    std::vector<double> area(area_mass && !gather_area ? n : 0);
+    std::unique_ptr<double[]> twice_area(new double[gather_area ? num_faces : 0]);
+    std::unique_ptr<int[]> leaving_face;
+    std::vector<double> length_sum(scale_dependent ? length_chunks(mesh) : 0);
+    std::vector<int> length_count(length_sum.size());
+    SparseOperator result;
+    result.row_start.resize(n + 1);
+    result.mass.resize(n);
+    detail::BucketFill rows(n, team_size);
+    long long zero_area = 0, needles = 0, floored = 0, massless = 0;
+    FAIRING_PRAGMA(omp parallel num_threads(team_size) if(team_size > 1)
+                   reduction(+ : zero_area, needles, floored))
+    {
+        const detail::Team team = detail::this_team();
+        const int f1 = curvature ? team.end(num_faces) : 0;
+        for (int f = team.begin(num_faces); f < f1; ++f) {
+            const Triangle& t = faces[f];
             const Vec3 p[3] = {detail::row(positions, t[0]), detail::row(positions, t[1]),
                                detail::row(positions, t[2])};
             if (detail::is_zero_area(p[0], p[1], p[2])) {
-                ++r.zero_area_faces;
+                ++zero_area;
+                for (int k = 0; k < 3; ++k) cot_opposite[3 * f + k] = 0;
+                if (gather_area) twice_area[f] = 0;
                 continue;
             }
-            const double twice_area = (p[1] - p[0]).cross(p[2] - p[0]).norm();
+            const double twice = (p[1] - p[0]).cross(p[2] - p[0]).norm();
             double largest_cot = 0;
             for (int k = 0; k < 3; ++k) {
                 // Half-edge 3f+k runs p[k] -> p[k+1]; its opposite corner is p[k+2].
                 const Vec3& c = p[(k + 2) % 3];
                 const Vec3 u = p[k] - c, v = p[(k + 1) % 3] - c;
-                cot_opposite[3 * f + k] = u.dot(v) / twice_area;
+                cot_opposite[3 * f + k] = u.dot(v) / twice;
                 largest_cot = std::max(largest_cot, std::abs(cot_opposite[3 * f + k]));
-                area[t[k]] += 0.5 * twice_area;
             }
-            if (largest_cot > 1e4) ++r.needle_faces;
+            if (largest_cot > 1e4) ++needles;
+            if (gather_area) twice_area[f] = twice;
+            else if (area_mass)
+                for (int k = 0; k < 3; ++k) area[t[k]] += 0.5 * twice;
         }
-    }
-
-    const double mean_edge = mean_edge_length(mesh, positions);
-    std::vector<WeightedEdge> edges;
-    edges.reserve(mesh.num_half_edges() / 2 + 1);
-    std::vector<double> length_sum(op == Operator::ScaleDependent ? n : 0, 0.0);
-    for (int h = 0; h < mesh.num_half_edges(); ++h) {
-        const int t = mesh.twin(h);
-        if (t >= 0 && t < h) continue;
-        const int i = mesh.from(h), j = mesh.to(h);
-        double w = 1.0;
-        if (op == Operator::ScaleDependent) {
-            double length = (positions.row(j) - positions.row(i)).norm();
-            if (!(length >= kEdgeFloor * mean_edge)) {
-                length = kEdgeFloor * mean_edge;
-                ++r.floored_edges;
+        double mean_edge = 0;
+        if (scale_dependent) {
+            edge_length_chunks(mesh, positions, length_sum.data(), length_count.data());
+            detail::barrier();
+            mean_edge = mean_of_chunks(length_sum, length_count);
+        }
+        const auto is_edge = [&mesh](int h) { return is_representative(mesh, h); };
+        const auto fill = [&](int h, int i, int j, int a, int b) {
+            const int t = mesh.twin(h);
+            double w = 1.0;
+            if (scale_dependent) {
+                double length = (positions.row(j) - positions.row(i)).norm();
+                if (!(length >= kEdgeFloor * mean_edge)) {
+                    length = kEdgeFloor * mean_edge;
+                    ++floored;
+                }
+                w = length;  // 1/length once the row has added it up
+            } else if (curvature) {
+                w = cot_opposite[h] + (t >= 0 ? cot_opposite[t] : 0.0);
+                if (gather_area) {
+                    const int f = HalfEdgeMesh::face(h), g = HalfEdgeMesh::face(t);
+                    const bool twin_leaves_from = t >= 0 && faces[g][t % 3] == i;
+                    leaving_face[a] = twin_leaves_from ? -2 - h : f;
+                    leaving_face[b] = t >= 0 && !twin_leaves_from ? g : -1;
+                }
             }
-            w = 1.0 / length;
-            length_sum[i] += length;
-            length_sum[j] += length;
-        } else if (op == Operator::CurvatureFlow) {
-            w = cot_opposite[h] + (t >= 0 ? cot_opposite[t] : 0.0);
-        }
-        edges.push_back({i, j, w});
-    }
+            result.weight[a] = result.weight[b] = w;
+        };
+        const auto sized = [&](int entries) {
+            if (gather_area) leaving_face.reset(new int[entries]);
+        };
+        scatter_rows(mesh, is_edge, sized, fill, rows, team, result);
 
-    std::vector<double> mass(n, 0.0);
-    if (normalized) {
-        for (const WeightedEdge& e : edges) {
-            mass[e.i] += e.w;
-            mass[e.j] += e.w;
+        std::vector<int> star;  // faces around the vertex, increasing
+        FAIRING_PRAGMA(omp for schedule(static) reduction(+ : massless))
+        for (int v = 0; v < n; ++v) {
+            const int begin = result.row_start[v], end = result.row_start[v + 1];
+            double mass = 0;
+            if (scale_dependent) {
+                for (int k = begin; k < end; ++k) {
+                    mass += result.weight[k];
+                    result.weight[k] = 1.0 / result.weight[k];
+                }
+                mass *= 0.5;  // E/2, eq. 11
+            }
+            if (normalized) {  // section 5.5
+                mass = 0;
+                for (int k = begin; k < end; ++k) mass += result.weight[k];
+            } else if (op == Operator::Umbrella) {
+                mass = end - begin;  // the valence
+            } else if (curvature && !gather_area) {
+                mass = 4.0 * area[v];  // 4A, eq. 14
+            } else if (curvature) {
+                star.clear();
+                for (int k = begin; k < end; ++k) {
+                    const int f = leaving_face[k];
+                    if (f >= 0) {
+                        star.push_back(f);
+                    } else if (f <= -2) {
+                        star.push_back(HalfEdgeMesh::face(-2 - f));
+                        star.push_back(HalfEdgeMesh::face(mesh.twin(-2 - f)));
+                    }
+                }
+                sort_small(star);
+                double star_area = 0;
+                for (int f : star) star_area += 0.5 * twice_area[f];
+                mass = 4.0 * star_area;
+            }
+            // A vertex without mass cannot take part; its edges are dropped below.
+            if (!(mass > 0) && !mesh.is_isolated(v)) {
+                mass = 0;
+                ++massless;
+            }
+            result.mass[v] = mass;
         }
-    } else if (op == Operator::Umbrella) {
-        for (const WeightedEdge& e : edges) {
-            mass[e.i] += 1;
-            mass[e.j] += 1;
-        }
-    } else if (op == Operator::ScaleDependent) {
-        for (int i = 0; i < n; ++i) mass[i] = 0.5 * length_sum[i];  // E/2, eq. 11
-    } else {
-        for (int i = 0; i < n; ++i) mass[i] = 4.0 * area[i];  // 4A, eq. 14
     }
+    r.zero_area_faces = static_cast<int>(zero_area);
+    r.needle_faces = static_cast<int>(needles);
+    r.floored_edges = static_cast<int>(floored);
+    r.massless_vertices = static_cast<int>(massless);
 
-    // A vertex without mass cannot take part; drop its edges so that K stays symmetric and the
-    // system stays positive definite (its neighbours then see it as a missing neighbour).
-    std::vector<char> massless(n, 0);
-    for (int i = 0; i < n; ++i)
-        if (!(mass[i] > 0) && !mesh.is_isolated(i)) {
-            massless[i] = 1;
-            mass[i] = 0;
-            ++r.massless_vertices;
+    // Drop the edges of massless vertices so that K stays symmetric and the system stays
+    // positive definite (their neighbours then see them as missing neighbours). Rare: serial.
+    if (massless > 0) {
+        int kept = 0;
+        for (int v = 0; v < n; ++v) {
+            const int begin = result.row_start[v], end = result.row_start[v + 1];
+            result.row_start[v] = kept;
+            if (result.mass[v] == 0) continue;
+            for (int k = begin; k < end; ++k)
+                if (result.mass[result.column[k]] != 0) {
+                    result.column[kept] = result.column[k];
+                    result.weight[kept++] = result.weight[k];
+                }
         }
-    if (r.massless_vertices > 0) {
-        std::vector<WeightedEdge> kept;
-        kept.reserve(edges.size());
-        for (const WeightedEdge& e : edges)
-            if (!massless[e.i] && !massless[e.j]) kept.push_back(e);
-        edges.swap(kept);
+        result.row_start[n] = kept;
+        result.column.resize(kept);
+        result.weight.resize(kept);
     }
-    return from_edges(n, edges, std::move(mass));
+    return result;
 }
 
-SparseOperator assemble_boundary_curve(const HalfEdgeMesh& mesh, const Positions& positions) {
+SparseOperator assemble_boundary_curve(const HalfEdgeMesh& mesh, const Positions& positions,
+                                       int threads) {
     const int n = mesh.num_vertices();
-    const double mean_edge = mean_edge_length(mesh, positions);
-    std::vector<WeightedEdge> edges;
-    std::vector<double> mass(n, 0.0);
-    for (int h = 0; h < mesh.num_half_edges(); ++h) {
-        if (!mesh.is_boundary(h)) continue;
-        const int i = mesh.from(h), j = mesh.to(h);
-        const double length =
-            std::max((positions.row(j) - positions.row(i)).norm(), kEdgeFloor * mean_edge);
-        edges.push_back({i, j, 1.0 / length});
-        mass[i] += 0.5 * length;  // E/2 over the two boundary neighbours
-        mass[j] += 0.5 * length;
+    const int team_size = detail::threads_for(n, threads);
+    (void)team_size;
+    std::vector<double> length_sum(length_chunks(mesh));
+    std::vector<int> length_count(length_sum.size());
+    SparseOperator result;
+    result.row_start.resize(n + 1);
+    result.mass.resize(n);
+    detail::BucketFill rows(n, team_size);
+    FAIRING_PRAGMA(omp parallel num_threads(team_size) if(team_size > 1))
+    {
+        const detail::Team team = detail::this_team();
+        edge_length_chunks(mesh, positions, length_sum.data(), length_count.data());
+        detail::barrier();
+        const double mean_edge = mean_of_chunks(length_sum, length_count);
+        const auto fill = [&](int, int i, int j, int a, int b) {
+            result.weight[a] = result.weight[b] = std::max(
+                (positions.row(j) - positions.row(i)).norm(), kEdgeFloor * mean_edge);
+        };
+        scatter_rows(mesh, [&mesh](int h) { return mesh.is_boundary(h); }, [](int) {}, fill,
+                     rows, team, result);
+        FAIRING_PRAGMA(omp for schedule(static))
+        for (int v = 0; v < n; ++v) {
+            double mass = 0;
+            for (int k = result.row_start[v]; k < result.row_start[v + 1]; ++k) {
+                mass += 0.5 * result.weight[k];  // E/2 over the two boundary neighbours
+                result.weight[k] = 1.0 / result.weight[k];
+            }
+            result.mass[v] = mass;
+        }
     }
-    return from_edges(n, edges, std::move(mass));
+    return result;
 }
 
 }  // namespace fairing

@@ -7,7 +7,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <set>
+#include <string>
 
 using fairing::HalfEdgeMesh;
 using fairing::Triangle;
@@ -292,4 +294,109 @@ TEST(HalfEdge, BuildRejectsBadInput) {
         bad.triangles.push_back({m.triangles[0][0], m.triangles[0][1], n});
         EXPECT_THROW(build(bad), fairing::Error);
     }
+}
+
+namespace {
+
+// Above detail::kParallelRows vertices, with everything the build has to find: holes (some of
+// them bow-ties), faces of flipped orientation, a face repeating a vertex, a zero-area face, an
+// isolated vertex and a second component.
+TriangleMesh large_untidy_mesh() {
+    TriangleMesh sphere = meshes::radial_noise(meshes::icosphere(7), 0.002);
+    std::vector<Triangle> kept;
+    for (std::size_t f = 0; f < sphere.triangles.size(); ++f) {
+        if (f % 97 == 0 || f % 1013 == 5) continue;
+        Triangle t = sphere.triangles[f];
+        if (f % 5003 == 7) std::swap(t[0], t[1]);
+        if (f % 7919 == 3) t[2] = t[0];
+        kept.push_back(t);
+    }
+    sphere.triangles = kept;
+    const Triangle& flat = sphere.triangles[100];  // its edge (0, 1) collapses
+    sphere.positions.row(flat[0]) = sphere.positions.row(flat[1]);
+    TriangleMesh m = meshes::merge(sphere, meshes::grid(30, 20));
+    const int n = static_cast<int>(m.positions.rows());
+    m.positions.conservativeResize(n + 1, 3);
+    m.positions.row(n) << 5, 5, 5;
+    return m;
+}
+
+void expect_same_mesh(const HalfEdgeMesh& a, const HalfEdgeMesh& b) {
+    ASSERT_EQ(a.num_vertices(), b.num_vertices());
+    ASSERT_EQ(a.num_faces(), b.num_faces());
+    EXPECT_EQ(a.faces(), b.faces());
+    EXPECT_EQ(a.input_face(), b.input_face());
+    for (int h = 0; h < a.num_half_edges(); ++h) ASSERT_EQ(a.twin(h), b.twin(h)) << "h = " << h;
+    for (int v = 0; v < a.num_vertices(); ++v) {
+        ASSERT_EQ(a.outgoing(v), b.outgoing(v)) << "v = " << v;
+        ASSERT_EQ(a.is_boundary_vertex(v), b.is_boundary_vertex(v)) << "v = " << v;
+    }
+    EXPECT_EQ(a.boundary_loops(), b.boundary_loops());
+    EXPECT_EQ(a.boundary_loop_edges(), b.boundary_loop_edges());
+    EXPECT_EQ(a.component_of_vertex(), b.component_of_vertex());
+    EXPECT_EQ(a.nonmanifold_vertices(), b.nonmanifold_vertices());
+    ASSERT_EQ(a.components().size(), b.components().size());
+    for (std::size_t c = 0; c < a.components().size(); ++c) {
+        EXPECT_EQ(a.components()[c].vertices, b.components()[c].vertices);
+        EXPECT_EQ(a.components()[c].faces, b.components()[c].faces);
+        EXPECT_EQ(a.components()[c].has_boundary, b.components()[c].has_boundary);
+        EXPECT_EQ(a.components()[c].consistently_oriented, b.components()[c].consistently_oriented);
+    }
+    const fairing::ValidationReport& ra = a.report();
+    const fairing::ValidationReport& rb = b.report();
+    EXPECT_EQ(ra.dropped_faces, rb.dropped_faces);
+    EXPECT_EQ(ra.isolated_vertices, rb.isolated_vertices);
+    EXPECT_EQ(ra.zero_area_faces, rb.zero_area_faces);
+    EXPECT_EQ(ra.inconsistent_edges, rb.inconsistent_edges);
+    EXPECT_EQ(ra.nonmanifold_vertices, rb.nonmanifold_vertices);
+}
+
+std::string build_error(const TriangleMesh& m, int threads) {
+    try {
+        HalfEdgeMesh::build(m.positions, m.triangles, threads);
+    } catch (const fairing::Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+// The build splits its passes over threads on large meshes; the result must not depend on it.
+TEST(HalfEdge, SameMeshOnAnyNumberOfThreads) {
+    const TriangleMesh m = large_untidy_mesh();
+    const HalfEdgeMesh one = HalfEdgeMesh::build(m.positions, m.triangles, 1);
+    const fairing::ValidationReport& r = one.report();
+    EXPECT_GT(r.dropped_faces, 0);
+    EXPECT_EQ(r.isolated_vertices, 1);
+    EXPECT_GT(r.zero_area_faces, 0);
+    EXPECT_GT(r.inconsistent_edges, 0);
+    EXPECT_GT(r.nonmanifold_vertices, 0);
+    EXPECT_GT(one.boundary_loops().size(), 10u);
+    EXPECT_EQ(one.components().size(), 2u);
+    for (int threads : {2, 3, 0}) {
+        SCOPED_TRACE(testing::Message() << threads << " threads");
+        expect_same_mesh(one, HalfEdgeMesh::build(m.positions, m.triangles, threads));
+    }
+}
+
+// The same errors, with the same counts, in the same order of precedence.
+TEST(HalfEdge, SameErrorsOnAnyNumberOfThreads) {
+    const TriangleMesh m = meshes::radial_noise(meshes::icosphere(7), 0.002);
+    const int n = static_cast<int>(m.positions.rows());
+    std::vector<TriangleMesh> bad(4, m);
+    bad[0].triangles[10][1] = n;                   // out of range (and a NaN: reported second)
+    bad[0].triangles[99999][2] = -1;
+    bad[0].positions(7, 0) = std::nan("");
+    bad[1].positions(7, 0) = INFINITY;             // non-finite
+    bad[2].triangles.push_back(m.triangles[500]);  // duplicated face
+    bad[3].positions.conservativeResize(n + 1, 3);  // non-manifold edge (a fin)
+    bad[3].positions.row(n) << 3, 3, 3;
+    bad[3].triangles.push_back({m.triangles[0][0], m.triangles[0][1], n});
+    for (const TriangleMesh& b : bad) {
+        const std::string one = build_error(b, 1);
+        EXPECT_FALSE(one.empty());
+        EXPECT_EQ(build_error(b, 2), one);
+    }
+    EXPECT_NE(build_error(bad[0], 2).find("2 face corners"), std::string::npos);
 }

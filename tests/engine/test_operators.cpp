@@ -458,3 +458,78 @@ TEST(Operators, BoundaryCurveOperator) {
         EXPECT_NEAR(s.mass[i], (lp + ln) / 2.0, 1e-13);
     }
 }
+
+namespace {
+
+// Above detail::kParallelRows vertices, with holes, zero-area faces, a vertex whose whole star is
+// degenerate (massless) and an edge much shorter than the mean (floored).
+TriangleMesh large_untidy_mesh() {
+    TriangleMesh m = meshes::radial_noise(meshes::icosphere(7), 0.002);
+    std::vector<fairing::Triangle> kept;
+    for (std::size_t f = 0; f < m.triangles.size(); ++f)
+        if (f % 211 != 0) kept.push_back(m.triangles[f]);
+    m.triangles = kept;
+    const auto ring = meshes::neighbours(m.triangles, static_cast<int>(m.positions.rows()));
+    for (int v : ring[1000]) m.positions.row(v) = m.positions.row(1000);
+    m.positions.row(20000) = m.positions.row(20001) + 1e-9 * m.positions.row(20001);
+    return m;
+}
+
+void expect_same_operator(const SparseOperator& a, const SparseOperator& b) {
+    EXPECT_EQ(a.row_start, b.row_start);
+    EXPECT_EQ(a.column, b.column);
+    // Bitwise: the same sums in the same order.
+    EXPECT_EQ(a.weight, b.weight);
+    EXPECT_EQ(a.mass, b.mass);
+}
+
+}  // namespace
+
+// Assembly splits its passes over threads on large meshes; the result must not depend on it.
+TEST(Operators, SameOperatorsOnAnyNumberOfThreads) {
+    const TriangleMesh m = large_untidy_mesh();
+    const HalfEdgeMesh he = HalfEdgeMesh::build(m.positions, m.triangles, 2);
+    const double mean = fairing::mean_edge_length(he, m.positions, 1);
+    for (Operator op : kOperators)
+        for (bool normalized : {false, true}) {
+            SCOPED_TRACE(testing::Message() << fairing::to_string(op) << (normalized ? " normalized" : ""));
+            fairing::AssemblyReport r1, r;
+            const SparseOperator one = fairing::assemble(op, he, m.positions, normalized, &r1, 1);
+            if (op == Operator::CurvatureFlow) {
+                EXPECT_GT(r1.zero_area_faces, 0);
+                EXPECT_GT(r1.massless_vertices, 0);
+            }
+            if (op == Operator::ScaleDependent) {
+                EXPECT_GT(r1.floored_edges, 0);
+            }
+            for (int threads : {2, 3, 0}) {
+                SCOPED_TRACE(testing::Message() << threads << " threads");
+                expect_same_operator(one, fairing::assemble(op, he, m.positions, normalized, &r, threads));
+                EXPECT_EQ(r.zero_area_faces, r1.zero_area_faces);
+                EXPECT_EQ(r.floored_edges, r1.floored_edges);
+                EXPECT_EQ(r.massless_vertices, r1.massless_vertices);
+                EXPECT_EQ(r.needle_faces, r1.needle_faces);
+            }
+        }
+    const SparseOperator curve = fairing::assemble_boundary_curve(he, m.positions, 1);
+    EXPECT_GT(curve.column.size(), 0u);
+    for (int threads : {2, 3, 0}) {
+        SCOPED_TRACE(testing::Message() << threads << " threads");
+        expect_same_operator(curve, fairing::assemble_boundary_curve(he, m.positions, threads));
+        EXPECT_EQ(fairing::mean_edge_length(he, m.positions, threads), mean);
+    }
+}
+
+// On a mesh of fewer than 16,384 half-edges the mean edge length is the plain running sum.
+TEST(Operators, MeanEdgeLengthOfASmallMeshIsTheRunningSum) {
+    const TriangleMesh m = noisy_sphere();
+    const HalfEdgeMesh he = HalfEdgeMesh::build(m.positions, m.triangles);
+    double sum = 0;
+    int count = 0;
+    for (int h = 0; h < he.num_half_edges(); ++h)
+        if (he.twin(h) < 0 || he.twin(h) > h) {
+            sum += (m.positions.row(he.to(h)) - m.positions.row(he.from(h))).norm();
+            ++count;
+        }
+    EXPECT_EQ(fairing::mean_edge_length(he, m.positions), sum / count);
+}

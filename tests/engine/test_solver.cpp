@@ -247,8 +247,11 @@ TEST(Solver, FactoredPreconditionerSolvesTheSameSystem) {
         EXPECT_TRUE(stats.factored);
         EXPECT_GT(stats.inner_iterations, 0);
         EXPECT_LT(meshes::max_row_distance(x, ref), 1e-8);
-        for (int i = 0; i < n; ++i)
-            if (!free[i]) EXPECT_EQ(x.row(i), s.mesh.positions.row(i)) << "fixed row " << i;
+        for (int i = 0; i < n; ++i) {
+            if (!free[i]) {
+                EXPECT_EQ(x.row(i), s.mesh.positions.row(i)) << "fixed row " << i;
+            }
+        }
     }
 }
 

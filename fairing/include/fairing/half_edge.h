@@ -71,7 +71,10 @@ public:
     const std::vector<int>& nonmanifold_vertices() const { return nonmanifold_vertices_; }
 
     // Throws Error for: an index out of range, non-finite coordinates, a non-manifold edge.
-    static HalfEdgeMesh build(const Positions& positions, const std::vector<Triangle>& triangles);
+    // threads as in Options::threads (0 = all cores); meshes below detail::kParallelRows
+    // vertices are built on one thread. The result does not depend on it.
+    static HalfEdgeMesh build(const Positions& positions, const std::vector<Triangle>& triangles,
+                              int threads = 1);
 
 private:
     std::vector<Triangle> faces_;

@@ -41,14 +41,19 @@ struct AssemblyReport {
 // Assembles op on the mesh at the given positions (curvature: eq. 14, faces of zero area skipped;
 // scale-dependent: eq. 11; umbrella: eq. 7). With normalized = true, mass[i] = sum_j w_ij
 // (section 5.5; for the umbrella this is the valence, i.e. no change).
+// threads as in Options::threads (0 = all cores), one below detail::kParallelRows vertices; the
+// result does not depend on it.
 SparseOperator assemble(Operator op, const HalfEdgeMesh& mesh, const Positions& positions,
-                        bool normalized = false, AssemblyReport* report = nullptr);
+                        bool normalized = false, AssemblyReport* report = nullptr,
+                        int threads = 1);
 
 // Eq. 11 restricted to the two boundary neighbours of every boundary vertex (section 5.3):
 // rows of interior vertices are empty and massless.
-SparseOperator assemble_boundary_curve(const HalfEdgeMesh& mesh, const Positions& positions);
+SparseOperator assemble_boundary_curve(const HalfEdgeMesh& mesh, const Positions& positions,
+                                       int threads = 1);
 
-// Mean length of the mesh's undirected edges.
-double mean_edge_length(const HalfEdgeMesh& mesh, const Positions& positions);
+// Mean length of the mesh's undirected edges, summed in fixed chunks of edges (so the same on any
+// number of threads).
+double mean_edge_length(const HalfEdgeMesh& mesh, const Positions& positions, int threads = 1);
 
 }  // namespace fairing
