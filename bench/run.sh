@@ -12,7 +12,8 @@
 #                  bunny_loop1_302k, torus_1m, bunny_loop2_1.2m (e.g. --only torus_10k: ~1 min)
 #   --results DIR  write results.md, runs.jsonl, micro.md, the plot into DIR instead of
 #                  bench/results (for trial runs that must not touch the committed tables)
-#   --repeat N     meshlab_filter_timer repetitions per MeshLab filter run (median; default 1)
+#   --repeat N     meshlab_filter_timer repetitions per MeshLab filter run (median; default 3).
+#                  The CLI rows that targets a, c and d compare are the fastest of 3 runs.
 #
 # Needs scripts/setup.sh once (Debian packages, MeshLab 2020.09 SDK in the cache). Builds the
 # engine, CLI and plugin of the current tree, the peers and bench tools into
