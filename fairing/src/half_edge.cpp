@@ -52,6 +52,7 @@ private:
 
 // Sorts a bucket of a few entries (a vertex's valence) in place.
 void insertion_sort(std::uint64_t* begin, std::uint64_t* end) {
+    if (end - begin < 2) return;  // also keeps begin + 1 off an empty vector's null data()
     for (std::uint64_t* i = begin + 1; i < end; ++i) {
         const std::uint64_t x = *i;
         std::uint64_t* j = i;
