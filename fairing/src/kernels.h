@@ -55,27 +55,10 @@ inline void k_row(int i, const double* xs, const int* start, const int* column,
     }
 }
 
-// Calls fn(i, s0, s1, s2) for every row i with (s0, s1, s2) = (K x)_i, rows split over
-// op.threads threads. fn must only write row i of its outputs.
-template <class RowFn>
-void for_each_k_row(const SparseOperator& op, const Positions& x, RowFn fn) {
-    const int n = op.size();
-    const double* xs = x.data();
-    const int* start = op.row_start.data();
-    const int* column = op.column.data();
-    const double* weight = op.weight.data();
-    const int threads = op.threads;
-    (void)threads;
-    FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1))
-    for (int i = 0; i < n; ++i) {
-        double s0, s1, s2;
-        k_row(i, xs, start, column, weight, s0, s1, s2);
-        fn(i, s0, s1, s2);
-    }
-}
-
-// As for_each_k_row, with a sum: fn(i, s0, s1, s2, a) adds row i's share to a[0..2]; returns
-// the three totals. Fusing a dot product into the product saves one pass over the vectors.
+// Calls fn(i, s0, s1, s2, a) for every row i with (s0, s1, s2) = (K x)_i, rows split over
+// op.threads threads; fn only writes row i of its outputs and may add row i's share of a sum to
+// a[0..2], whose totals are returned (fusing a dot product into the product saves a pass over
+// the vectors).
 template <class RowFn>
 std::array<double, 3> sum_over_k_rows(const SparseOperator& op, const Positions& x, RowFn fn) {
     const int n = op.size();
@@ -98,6 +81,14 @@ std::array<double, 3> sum_over_k_rows(const SparseOperator& op, const Positions&
         a2 += a[2];
     }
     return {a0, a1, a2};
+}
+
+// The same without a sum: fn(i, s0, s1, s2).
+template <class RowFn>
+void for_each_k_row(const SparseOperator& op, const Positions& x, RowFn fn) {
+    sum_over_k_rows(op, x, [&fn](int i, double s0, double s1, double s2, double*) {
+        fn(i, s0, s1, s2);
+    });
 }
 
 }  // namespace detail

@@ -158,6 +158,60 @@ std::vector<double> inverse_jacobi(const LinearSystem& system) {
     return inverse;
 }
 
+// One pass over the free rows: x += alpha p, r -= alpha q, returning the new residual norms
+// and, when inv is given, r.z with z = J^-1 r (the next CG coefficient).
+struct UpdateSums {
+    Column3 residual;
+    Column3 rz;
+};
+
+UpdateSums update_iterate(const LinearSystem& system, Positions& x, Positions& r,
+                          const Positions& p, const Positions& q, const double alpha[3],
+                          ResidualNorm norm, const double* inv) {
+    const int n = system.op->size();
+    const int threads = system.op->threads;
+    (void)threads;
+    const char* f = system.free.data();
+    double* xs = x.data();
+    double* rs = r.data();
+    const double* ps = p.data();
+    const double* qs = q.data();
+    const double a0 = alpha[0], a1 = alpha[1], a2 = alpha[2];
+    double n0 = 0, n1 = 0, n2 = 0, m0 = 0, m1 = 0, m2 = 0, z0 = 0, z1 = 0, z2 = 0;
+    FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) \
+                   if(threads > 1) reduction(+ : n0, n1, n2, z0, z1, z2) \
+                   reduction(max : m0, m1, m2))
+    for (int i = 0; i < n; ++i) {
+        if (!f[i]) continue;
+        double* xi = xs + 3 * i;
+        double* ri = rs + 3 * i;
+        const double* pi = ps + 3 * i;
+        const double* qi = qs + 3 * i;
+        xi[0] += a0 * pi[0];
+        xi[1] += a1 * pi[1];
+        xi[2] += a2 * pi[2];
+        ri[0] -= a0 * qi[0];
+        ri[1] -= a1 * qi[1];
+        ri[2] -= a2 * qi[2];
+        n0 += ri[0] * ri[0];
+        n1 += ri[1] * ri[1];
+        n2 += ri[2] * ri[2];
+        m0 = std::max(m0, std::abs(ri[0]));
+        m1 = std::max(m1, std::abs(ri[1]));
+        m2 = std::max(m2, std::abs(ri[2]));
+        const double w = inv ? inv[i] : 0.0;
+        z0 += ri[0] * ri[0] * w;
+        z1 += ri[1] * ri[1] * w;
+        z2 += ri[2] * ri[2] * w;
+    }
+    UpdateSums sums;
+    sums.residual = norm == ResidualNorm::L2
+                        ? Column3{std::sqrt(n0), std::sqrt(n1), std::sqrt(n2)}
+                        : Column3{m0, m1, m2};
+    sums.rz = {z0, z1, z2};
+    return sums;
+}
+
 // Iterations of Jacobi-preconditioned CG on the free rows, from x with r = b - A x (r zero on
 // fixed rows). Column c iterates while active[c], and stops once rn[c] <= goal[c]; at most
 // `cap` iterations (counted from `done`). Returns the iteration count reached.
@@ -171,7 +225,6 @@ int jacobi_cg(const LinearSystem& system, const double* inv, Positions& x, Posit
     const char* f = system.free.data();
     double* ps = p.data();
     double* rs = r.data();
-    double* xs = x.data();
     // p = z = J^-1 r, rz = r.z
     double z0 = 0, z1 = 0, z2 = 0;
     FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1) \
@@ -195,38 +248,8 @@ int jacobi_cg(const LinearSystem& system, const double* inv, Positions& x, Posit
                 alpha[c] = rz[c] / pq[c];
                 check_finite(alpha[c], done);
             }
-        // One pass: x += alpha p, r -= alpha q, the residual norms and r.z with z = J^-1 r.
-        const double* qs = q.data();
-        const double a0 = alpha[0], a1 = alpha[1], a2 = alpha[2];
-        double n0 = 0, n1 = 0, n2 = 0, m0 = 0, m1 = 0, m2 = 0;
-        z0 = z1 = z2 = 0;
-        FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) \
-                       if(threads > 1) reduction(+ : n0, n1, n2, z0, z1, z2) \
-                       reduction(max : m0, m1, m2))
-        for (int i = 0; i < n; ++i) {
-            if (!f[i]) continue;
-            double* xi = xs + 3 * i;
-            double* ri = rs + 3 * i;
-            const double* pi = ps + 3 * i;
-            const double* qi = qs + 3 * i;
-            xi[0] += a0 * pi[0];
-            xi[1] += a1 * pi[1];
-            xi[2] += a2 * pi[2];
-            ri[0] -= a0 * qi[0];
-            ri[1] -= a1 * qi[1];
-            ri[2] -= a2 * qi[2];
-            n0 += ri[0] * ri[0];
-            n1 += ri[1] * ri[1];
-            n2 += ri[2] * ri[2];
-            m0 = std::max(m0, std::abs(ri[0]));
-            m1 = std::max(m1, std::abs(ri[1]));
-            m2 = std::max(m2, std::abs(ri[2]));
-            z0 += ri[0] * ri[0] * inv[i];
-            z1 += ri[1] * ri[1] * inv[i];
-            z2 += ri[2] * ri[2] * inv[i];
-        }
-        rn = norm == ResidualNorm::L2 ? Column3{std::sqrt(n0), std::sqrt(n1), std::sqrt(n2)}
-                                      : Column3{m0, m1, m2};
+        const UpdateSums sums = update_iterate(system, x, r, p, q, alpha, norm, inv);
+        rn = sums.residual;
         for (int c = 0; c < 3; ++c) {
             check_finite(rn[c], done);
             if (active[c] && converged(c)) active[c] = false;
@@ -234,7 +257,7 @@ int jacobi_cg(const LinearSystem& system, const double* inv, Positions& x, Posit
         if (after_iteration) after_iteration(rn);
         if (!any(active)) break;
         // p = J^-1 r + beta p on the columns still iterating.
-        const Column3 rz_new{z0, z1, z2};
+        const Column3& rz_new = sums.rz;
         double beta[3] = {0, 0, 0};
         double keep[3] = {0, 0, 0};  // 1 where the column stays put
         for (int c = 0; c < 3; ++c) {
@@ -337,36 +360,7 @@ int factored_fcg(const LinearSystem& system, FactoredPreconditioner& preconditio
                 alpha[c] = pr[c] / pq[c];
                 check_finite(alpha[c], done);
             }
-        double n0 = 0, n1 = 0, n2 = 0, m0 = 0, m1 = 0, m2 = 0;
-        double* xs = x.data();
-        double* rs = r.data();
-        const double* ps = p.data();
-        const double* qs = q.data();
-        const double a0 = alpha[0], a1 = alpha[1], a2 = alpha[2];
-        (void)threads;
-        FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) \
-                       if(threads > 1) reduction(+ : n0, n1, n2) reduction(max : m0, m1, m2))
-        for (int i = 0; i < n; ++i) {
-            if (!f[i]) continue;
-            double* xi = xs + 3 * i;
-            double* ri = rs + 3 * i;
-            const double* pi = ps + 3 * i;
-            const double* qi = qs + 3 * i;
-            xi[0] += a0 * pi[0];
-            xi[1] += a1 * pi[1];
-            xi[2] += a2 * pi[2];
-            ri[0] -= a0 * qi[0];
-            ri[1] -= a1 * qi[1];
-            ri[2] -= a2 * qi[2];
-            n0 += ri[0] * ri[0];
-            n1 += ri[1] * ri[1];
-            n2 += ri[2] * ri[2];
-            m0 = std::max(m0, std::abs(ri[0]));
-            m1 = std::max(m1, std::abs(ri[1]));
-            m2 = std::max(m2, std::abs(ri[2]));
-        }
-        rn = norm == ResidualNorm::L2 ? Column3{std::sqrt(n0), std::sqrt(n1), std::sqrt(n2)}
-                                      : Column3{m0, m1, m2};
+        rn = update_iterate(system, x, r, p, q, alpha, norm, nullptr).residual;
         for (int c = 0; c < 3; ++c) {
             check_finite(rn[c], done);
             if (active[c] && rn[c] <= goal[c]) active[c] = false;
@@ -389,6 +383,7 @@ int factored_fcg(const LinearSystem& system, FactoredPreconditioner& preconditio
         }
         double* pw = p.data();
         const double* zs = z.data();
+        const double* rs = r.data();
         double s0 = 0, s1 = 0, s2 = 0;
         FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1) \
                        reduction(+ : s0, s1, s2))

@@ -213,6 +213,15 @@ TEST(Solver, NonFiniteValueThrows) {
 
 namespace {
 
+// Curvature flow on a 2,562-vertex sphere with radial noise; lambda_dt is set by the test.
+SolverCase noisy_sphere_curvature() {
+    SolverCase s;
+    s.mesh = meshes::radial_noise(meshes::icosphere(4), 0.1, 23);
+    s.he = HalfEdgeMesh::build(s.mesh.positions, s.mesh.triangles);
+    s.op = fairing::assemble(Operator::CurvatureFlow, s.he, s.mesh.positions);
+    return s;
+}
+
 fairing::SolveStats solve_with(const LinearSystem& sys, Positions& x,
                                fairing::Preconditioner preconditioner, double tolerance = 1e-11) {
     fairing::SolveSettings settings;
@@ -259,10 +268,7 @@ TEST(Solver, FactoredOuterIterationsDoNotGrowWithTheStep) {
     // With D = M, A <= B <= 2A whatever lambda_dt: the outer iteration count stays small and
     // flat while Jacobi's grows as sqrt(lambda_dt), and the inner (first-order) work grows
     // slower than Jacobi's.
-    SolverCase s;
-    s.mesh = meshes::radial_noise(meshes::icosphere(4), 0.1, 23);
-    s.he = HalfEdgeMesh::build(s.mesh.positions, s.mesh.triangles);
-    s.op = fairing::assemble(Operator::CurvatureFlow, s.he, s.mesh.positions);
+    SolverCase s = noisy_sphere_curvature();
     const double h = meshes::mean_edge_length(s.mesh.positions, s.mesh.triangles);
     const int n = s.op.size();
     int jacobi_unit = 0, jacobi_strong = 0, inner_unit = 0, inner_strong = 0;
@@ -283,10 +289,7 @@ TEST(Solver, FactoredOuterIterationsDoNotGrowWithTheStep) {
 }
 
 TEST(Solver, AutomaticKeepsJacobiOnLightStepsAndSwitchesOnHeavyOnes) {
-    SolverCase s;
-    s.mesh = meshes::radial_noise(meshes::icosphere(4), 0.1, 23);
-    s.he = HalfEdgeMesh::build(s.mesh.positions, s.mesh.triangles);
-    s.op = fairing::assemble(Operator::CurvatureFlow, s.he, s.mesh.positions);
+    SolverCase s = noisy_sphere_curvature();
     const double h = meshes::mean_edge_length(s.mesh.positions, s.mesh.triangles);
     const int n = s.op.size();
     for (double time_step : {0.5, 2000.0}) {
