@@ -434,7 +434,6 @@ SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& 
     for (int c = 0; c < 3; ++c) goal[c] = scale[c] > 0 ? settings.tolerance * scale[c] : 0.0;
 
     SolveStats stats;
-    std::vector<double> inverse = inverse_jacobi(system);
     std::unique_ptr<FactoredPreconditioner> factored;
     Positions z;
     const auto use_factored = [&] {
@@ -444,6 +443,8 @@ SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& 
     };
     bool trial_pending = system.order == 2 && settings.preconditioner == Preconditioner::Automatic;
     if (system.order == 2 && settings.preconditioner == Preconditioner::Factored) use_factored();
+    // Jacobi's diagonal (for L^2 a sweep over the 2-ring) only when Jacobi iterations may run.
+    const std::vector<double> inverse = factored ? std::vector<double>() : inverse_jacobi(system);
     // The iteration cap bounds the work too: an inner iteration is one product with K, an
     // iteration of the L^2 system two, so the inner solves get twice the cap.
     const int inner_cap = 2 * settings.max_iterations;
