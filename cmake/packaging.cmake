@@ -9,6 +9,19 @@ if(NOT TARGET filter_implicit_fairing OR NOT TARGET implicit-fairing)
   return()
 endif()
 
+# Dates in the man page and the changelog: the last commit's when built from git (the same
+# bytes on every rebuild of one commit), else now.
+execute_process(COMMAND git -C ${PROJECT_SOURCE_DIR} log -1 --format=%ct%n%aD
+                OUTPUT_VARIABLE git_dates OUTPUT_STRIP_TRAILING_WHITESPACE
+                ERROR_QUIET RESULT_VARIABLE git_rc)
+if(git_rc EQUAL 0 AND git_dates MATCHES "^([0-9]+)\n(.+)$")
+  set(FAIRING_SOURCE_DATE_EPOCH ${CMAKE_MATCH_1})
+  set(FAIRING_DEB_DATE "${CMAKE_MATCH_2}")
+else()
+  string(TIMESTAMP FAIRING_SOURCE_DATE_EPOCH "%s" UTC)
+  string(TIMESTAMP FAIRING_DEB_DATE "%a, %d %b %Y %H:%M:%S +0000" UTC)
+endif()
+
 # ---- man page: help2man runs the freshly built tool at build time -------------------------------
 find_program(HELP2MAN_EXECUTABLE help2man)
 find_program(GZIP_EXECUTABLE gzip)
@@ -18,7 +31,8 @@ if(HELP2MAN_EXECUTABLE AND GZIP_EXECUTABLE)
   # gzip -n: no time stamp in the archive (reproducible; lintian checks it).
   add_custom_command(OUTPUT ${FAIRING_MAN_PAGE}
     COMMAND ${CMAKE_COMMAND} -E make_directory ${CMAKE_BINARY_DIR}/man
-    COMMAND ${HELP2MAN_EXECUTABLE} --no-info --section=1
+    COMMAND ${CMAKE_COMMAND} -E env SOURCE_DATE_EPOCH=${FAIRING_SOURCE_DATE_EPOCH}
+            ${HELP2MAN_EXECUTABLE} --no-info --section=1
             --name=${FAIRING_MAN_NAME_LINE} --output=${CMAKE_BINARY_DIR}/man/implicit-fairing.1
             $<TARGET_FILE:implicit-fairing>
     COMMAND ${GZIP_EXECUTABLE} -9nf ${CMAKE_BINARY_DIR}/man/implicit-fairing.1
@@ -38,14 +52,6 @@ set(FAIRING_DEB_REVISION 1 CACHE STRING "Debian revision of the .deb (version ${
 set(FAIRING_DEB_MAINTAINER
     "filter_implicit_fairing maintainers <maintainers@users.noreply.h-seed-20853493.example>"
     CACHE STRING "Maintainer field of the .deb")
-# The changelog's date: the last commit's when built from git (same date on every rebuild of
-# one commit), else the configure time.
-execute_process(COMMAND git -C ${PROJECT_SOURCE_DIR} log -1 --format=%aD
-                OUTPUT_VARIABLE FAIRING_DEB_DATE OUTPUT_STRIP_TRAILING_WHITESPACE
-                ERROR_QUIET RESULT_VARIABLE git_rc)
-if(NOT git_rc EQUAL 0 OR NOT FAIRING_DEB_DATE)
-  string(TIMESTAMP FAIRING_DEB_DATE "%a, %d %b %Y %H:%M:%S +0000" UTC)
-endif()
 set(deb_doc ${CMAKE_BINARY_DIR}/packaging)
 file(WRITE ${deb_doc}/changelog.Debian
 "${FAIRING_DEB_NAME} (${PROJECT_VERSION}-${FAIRING_DEB_REVISION}) bookworm; urgency=medium

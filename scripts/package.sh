@@ -13,8 +13,7 @@ die() { echo "package.sh: $*" >&2; exit 2; }
 command -v dpkg-shlibdeps >/dev/null || die "dpkg-shlibdeps missing (apt-get install dpkg-dev)"
 command -v help2man >/dev/null || die "help2man missing (apt-get install help2man), needed for the man page"
 
-# Only what the package holds; CPack's own pre-install step then builds the rest of 'all'
-# (a no-op after scripts/setup.sh).
+# Only what the package holds (cpack itself builds nothing with the Ninja generator).
 cmake --build "$build_dir" -j2 --target filter_implicit_fairing implicit-fairing \
     implicit-fairing-man implicit-fairing-changelog >&2
 [ -f "$build_dir/man/implicit-fairing.1.gz" ] || die "man page not generated (help2man)"
