@@ -16,6 +16,8 @@ packages+=(clang libclang-rt-14-dev)
 # (python3 test helpers; xdotool, imagemagick and tesseract drive and read the GUI under Xvfb).
 packages+=(meshlab qtbase5-dev libqt5opengl5-dev libglew-dev dpkg-dev xz-utils python3
            xvfb xauth xdotool imagemagick tesseract-ocr tesseract-ocr-eng)
+# The Debian package (scripts/package.sh, tests/package): man page from --help, lintian, man -w.
+packages+=(help2man lintian man-db)
 "$root/scripts/ensure-packages.sh" "${packages[@]}"
 
 # MeshLab 2020.09 headers (Debian source package, pinned) into the cache; prints its directory.
