@@ -401,6 +401,9 @@ def case_errors():
     with open(past_end, "w") as f:
         f.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n")
     expect_failure([past_end, out], out, "refers to a vertex the file does not have")
+    with open(past_end, "w") as f:  # index 0 is invalid in OBJ; that importer reads it as 4
+        f.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n")
+    expect_failure([past_end, out], out, "refers to a vertex the file does not have")
     garbage = work("garbage.ply")
     with open(garbage, "w") as f:
         f.write("this is not a mesh\n")
