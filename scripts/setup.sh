@@ -9,7 +9,7 @@ export FAIRING_CACHE=${FAIRING_CACHE:-$HOME/.cache/filter_implicit_fairing}
 
 # Debian packages the engine, the tests and the tools need.
 packages=(g++ cmake ninja-build pkg-config libeigen3-dev libgtest-dev libgmock-dev
-          libcli11-dev)
+          libcli11-dev nlohmann-json3-dev)
 # The sanitizer build and the fuzzer (scripts/sanitize.sh, fuzz/run.sh): clang with libFuzzer.
 packages+=(clang libclang-rt-14-dev)
 # MeshLab 2020.09 plugin (Debian 12's meshlab), its headless runs and integration tests

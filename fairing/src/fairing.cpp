@@ -176,6 +176,7 @@ void Run::integrate(const SparseOperator& op, const std::vector<char>& free, dou
                      " exceeds the stability bound " + number(bound) + " of this mesh (" +
                      system + "); expect growing oscillations, or use implicit integration");
                 warned_stability_ = true;
+                result_.explicit_unstable = true;
             }
         }
         Positions lx, llx;
@@ -282,8 +283,8 @@ Result Run::run() {
         throw Error(detail::count_of(report.nonmanifold_vertices, "boundary vertex is",
                                      "boundary vertices are") +
                     " non-manifold (several boundary loops meet there), so the virtual-vertex "
-                    "boundary mode cannot close the holes; run MeshLab's 'Repair non Manifold "
-                    "Vertices' filter first, or choose another boundary mode");
+                    "boundary mode cannot close the holes",
+                    Repair::NonManifoldVertices, "choose another boundary mode");
 
     // Work on coordinates centred on the bounding box: the stopping rule and the volume are
     // then as accurate far from the origin as near it.

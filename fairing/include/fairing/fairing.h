@@ -159,6 +159,7 @@ struct Result {
     int dropped_faces = 0;          // faces repeating a vertex index: left out
     int inconsistent_edges = 0;     // edges whose two faces disagree on orientation
     int boundary_loops = 0;
+    bool explicit_unstable = false;  // an explicit step exceeded its stability bound
     std::vector<std::string> warnings;
     double seconds = 0;             // the whole of fair(): validation, assembly, solves
 };
