@@ -16,6 +16,8 @@ packages+=(clang libclang-rt-14-dev)
 # (python3 test helpers; xdotool, imagemagick and tesseract drive and read the GUI under Xvfb).
 packages+=(meshlab qtbase5-dev libqt5opengl5-dev libglew-dev dpkg-dev xz-utils python3
            xvfb xauth xdotool imagemagick tesseract-ocr tesseract-ocr-eng)
+# scripts/batch.py (Dask distributed, progress bar) and its tests (label batch).
+packages+=(python3-distributed python3-tqdm)
 "$root/scripts/ensure-packages.sh" "${packages[@]}"
 
 # MeshLab 2020.09 headers (Debian source package, pinned) into the cache; prints its directory.
