@@ -37,7 +37,7 @@ render() {  # MESH.ply PNG TITLE [f3d options]: one 400x250 panel with a caption
   local mesh=$1 png=$2 title=$3
   shift 3
   xvfb-run -a f3d --output="$png.raw.png" --resolution=400,250 --up=+Z \
-    --camera-position=5.5,-3.5,3.5 --camera-focal-point=2,0.8,0.5 "$@" "$mesh" >/dev/null 2>&1
+    --camera-position=4.3,-2.2,2.6 --camera-focal-point=1.7,0.5,0.8 "$@" "$mesh" >/dev/null 2>&1
   convert "$png.raw.png" -font "$font" -gravity north -fill white -pointsize 15 \
     -annotate +0+6 "$title" "$png"
   rm -f "$png.raw.png"
@@ -57,6 +57,8 @@ record() {  # NAME TITLE MESH
 }
 record noisy "noisy input (0.1 edge)" "$out/noisy.ply"
 
+declare -A short=([uniform]="filter alone" [selection]="crease selection"
+                  [geodesic]="geodesic weights" [curvature]="curvature weights")
 declare -A title=(
   [uniform]="our filter alone"
   [selection]="crease selection, inverted + Affect only selection"
@@ -68,12 +70,13 @@ for r in uniform selection geodesic curvature; do
     -s "$out/mlx/recipe_$r.mlx" > "$out/$r.log" 2>&1 \
     || { echo "recipes: $r failed, see $out/$r.log" >&2; exit 1; }
   record "$r" "${title[$r]}" "$out/$r.ply"
-  render "$out/$r.ply" "$out/$r.result.png" "${title[$r]}: result"
+  render "$out/$r.ply" "$out/$r.result.png" "${short[$r]}: result"
   if [ "$r" = uniform ]; then
     render "$out/noisy.ply" "$out/$r.left.png" "noisy input (0.1 edge)"
   else
     mesh paint "$out/$r.ply" "$out/$r.paint.ply" "${weights[$r]}" "$out/noisy.ply"
-    render "$out/$r.paint.ply" "$out/$r.left.png" "weight: red 0 (fixed) to grey 1" -s --comp=-2
+    render "$out/$r.paint.ply" "$out/$r.left.png" "${short[$r]}: weight, red 0 (fixed) to grey 1" \
+      -s --comp=-2
   fi
   pair "$out/$r.left.png" "$out/$r.result.png" "$out/recipe_$r.png"
   rm -f "$out/$r.left.png" "$out/$r.result.png"
