@@ -4,9 +4,9 @@
   recipes_mesh.py gen OUTDIR [--noise S]
       OUTDIR/clean.ply and OUTDIR/noisy.ply: a fandisk-like part (a block 4 x 1.6 with a flat
       top, a 45 degree chamfer, a lower flat, a cylindrical bump of radius 0.7 meeting the flats
-      at 45.6 degree creases, and 90 degree edges all round; every crease lies on mesh edges),
-      about 11,000 vertices of edge H = 0.05, and the same part with Gaussian noise of S mean
-      edge lengths (default 0.2) along the vertex normals.
+      at 43 degree creases, and 90 degree edges all round; every crease lies on mesh edges),
+      9,774 vertices on a grid of step H = 0.05 (mean edge 0.056), and the same part with
+      Gaussian noise of S mean edge lengths (default 0.1) along the vertex normals.
   recipes_mesh.py measure CLEAN.ply NOISY.ply MESH.ply
       one line of JSON: RMS distance of MESH's vertices to the clean part (in mean edges), the
       same for vertices on flat faces, on creases and on the bump; the crease sharpness (mean
@@ -26,7 +26,7 @@ import sys
 import numpy as np
 
 L, W = 4.0, 1.6         # x and y extent
-H = 0.05                 # edge length
+H = 0.05                 # grid step (the mean edge is 0.056 with the diagonals)
 TOP, MID = 1.2, 0.8      # heights of the upper and lower flats
 R, XB = 0.7, 2.5         # bump radius and centre (x); it spans x in [2, 3]
 SEED = 3
@@ -285,7 +285,7 @@ def measure(clean_path, noisy_path, path):
 
 def main(argv):
     if len(argv) >= 2 and argv[0] == "gen":
-        noise = float(argv[3]) if len(argv) >= 4 and argv[2] == "--noise" else 0.2
+        noise = float(argv[3]) if len(argv) >= 4 and argv[2] == "--noise" else 0.1
         gen(argv[1], noise)
         return 0
     if len(argv) == 4 and argv[0] == "measure":

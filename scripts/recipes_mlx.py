@@ -5,7 +5,7 @@ from tests/meshlab2020/mltest.py, the project's one writer of it.
 
   recipes_mlx.py OUTDIR     writes OUTDIR/recipe_<name>.mlx for every recipe of RECIPES
 
-Numbers are in the part's units (scripts/recipes_mesh.py: mean edge H = 0.05).
+Numbers are in the part's units (scripts/recipes_mesh.py: grid step H = 0.05, mean edge 0.056).
 """
 import importlib.util
 import os
@@ -30,7 +30,7 @@ def _cos(k):
 CREASE = "1 - min(%s, %s, %s) / sqrt(fnx^2 + fny^2 + fnz^2)" % (_cos(0), _cos(1), _cos(2))
 CREASE_MIN = 0.15           # face crease measure: about 0.3 on a 90 degree crease, 0.08 on 45
 CREASE_VOTE = 0.6           # share of selected neighbours (after three smoothings) to keep
-GEODESIC_RAMP = 3 * H       # weight 0 on a crease, 1 from three edges away
+GEODESIC_RAMP = 3 * H       # weight 0 on a crease, 1 from three grid steps away
 CURVATURE_FULL = 15.0       # RMS curvature (1/units; 1/0.7 on the bump) giving weight 0
 
 
