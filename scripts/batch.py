@@ -24,8 +24,6 @@ import json
 import logging
 import os
 import shutil
-import socket
-import subprocess
 import sys
 import time
 import uuid
@@ -220,7 +218,12 @@ def main(argv):
 
     t0 = time.monotonic()
     if todo:
-        from distributed import as_completed
+        try:
+            from distributed import as_completed
+        except ImportError:
+            sys.stderr.write("batch.py: Dask distributed is not installed for %s: install Debian's "
+                             "python3-distributed and run with /usr/bin/python3\n" % sys.executable)
+            return 2
         try:
             client, cluster = connect(args)
         except (OSError, TimeoutError) as e:
@@ -235,8 +238,11 @@ def main(argv):
                 futures[f] = (rel, src, dst)
             bar = None
             if progress:
-                from tqdm import tqdm
-                bar = tqdm(total=len(futures), unit="mesh", file=sys.stderr)
+                try:
+                    from tqdm import tqdm
+                    bar = tqdm(total=len(futures), unit="mesh", file=sys.stderr)
+                except ImportError:
+                    sys.stderr.write("batch.py: no progress bar (python3-tqdm is missing)\n")
             failed = 0
             for f in as_completed(futures):
                 rel, src, dst = futures[f]

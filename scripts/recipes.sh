@@ -86,7 +86,8 @@ printf '\n]\n' >> "$out/figures.json"
 "$py" - "$out/figures.json" > "$out/figures.md" <<'EOF'
 import json, sys
 rows = json.load(open(sys.argv[1]))
-print("| recipe | error (edges) | flat | crease | bump | crease sharpness | normal error | crease vertices kept |")
+print("| recipe | error (edges) | flat | crease | bump | crease sharpness | normal error "
+      "| crease vertices kept |")
 print("|---|---:|---:|---:|---:|---:|---:|---:|")
 for r in rows:
     print("| %s | %.4f | %.4f | %.4f | %.4f | %.1f %% | %.2f° | %.1f %% |" % (

@@ -20,7 +20,6 @@
 """
 import json
 import math
-import struct
 import sys
 
 import numpy as np
@@ -196,8 +195,6 @@ def read_vertex_quality(path):
     with open(path, "rb") as f:
         data = f.read()
     end = data.index(b"end_header\n") + len(b"end_header\n")
-    sizes = {"float": 4, "double": 8, "uchar": 1, "char": 1, "int": 4, "uint": 4, "short": 2,
-             "ushort": 2}
     fields, n, in_vertex = [], 0, False
     for line in data[:end].decode().splitlines():
         w = line.split()

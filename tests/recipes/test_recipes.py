@@ -51,7 +51,8 @@ def main():
     for name in ("selection", "geodesic", "curvature"):
         r = fig[name]
         check(r["crease_sharpness_pct"] >= 85,
-              "%s keeps the creases: %.1f %% of the clean angles" % (name, r["crease_sharpness_pct"]))
+              "%s keeps the creases: %.1f %% of the clean angles"
+              % (name, r["crease_sharpness_pct"]))
         for part in ("rms_flat", "rms_bump"):
             check(r[part] <= 0.5 * noisy[part], "%s: %s %.4f <= half the noisy %.4f"
                   % (name, part, r[part], noisy[part]))
