@@ -27,7 +27,7 @@ done
 py=/usr/bin/python3   # Debian's, with python3-numpy
 mesh() { "$py" "$root/scripts/recipes_mesh.py" "$@"; }
 
-rm -rf "$out"
+# every file below is rewritten; nothing else in DIR is touched
 mkdir -p "$out/mlx"
 mesh gen "$out" --noise 0.1
 "$py" "$root/scripts/recipes_mlx.py" "$out/mlx"

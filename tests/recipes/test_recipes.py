@@ -16,6 +16,7 @@ What a user of the recipes needs, on the generated part with noise of 0.1 edge:
 import argparse
 import json
 import os
+import shutil
 import subprocess
 import sys
 
@@ -36,6 +37,7 @@ def main():
     p.add_argument("--recipes", required=True)
     p.add_argument("--work", required=True)
     a = p.parse_args()
+    shutil.rmtree(a.work, ignore_errors=True)   # no stale picture or figure can pass for new
     r = subprocess.run([a.recipes, "--out", a.work])
     if r.returncode != 0:
         fail("recipes.sh exited %d" % r.returncode)
