@@ -154,6 +154,8 @@ def connect(args):
     from distributed import Client, LocalCluster
     if args.scheduler:
         return Client(args.scheduler, timeout="%gs" % args.connect_timeout), None
+    # the worker processes re-import this file; keep scripts/ free of __pycache__
+    os.environ["PYTHONDONTWRITEBYTECODE"] = "1"
     cluster = LocalCluster(n_workers=max(1, args.workers), threads_per_worker=1,
                            processes=True, dashboard_address=None,
                            silence_logs=logging.ERROR)
