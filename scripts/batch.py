@@ -120,6 +120,7 @@ def smooth_one(cli, src, dst, tmp_dir, options, timeout):
     t0 = time.monotonic()
     tmp = os.path.join(tmp_dir, os.path.basename(dst))
     try:
+        shutil.rmtree(tmp_dir, ignore_errors=True)   # left by an attempt whose worker died
         os.makedirs(tmp_dir)
         p = subprocess.run([cli, src, tmp] + list(options), stdout=subprocess.PIPE,
                            stderr=subprocess.PIPE, text=True, timeout=timeout)
@@ -158,7 +159,7 @@ def connect(args):
     os.environ["PYTHONDONTWRITEBYTECODE"] = "1"
     cluster = LocalCluster(n_workers=max(1, args.workers), threads_per_worker=1,
                            processes=True, dashboard_address=None,
-                           silence_logs=logging.ERROR)
+                           silence_logs=logging.CRITICAL)
     return Client(cluster), cluster
 
 
@@ -233,11 +234,17 @@ def main(argv):
                              "running there, and the port open?)\n" % (args.scheduler, e))
             return 2
         try:
-            futures = {}
-            for rel, src, dst, tmp in todo:
-                f = client.submit(smooth_one, cli, src, dst, tmp, options, args.timeout,
-                                  key="implicit-fairing-%s-%s" % (run_id, rel), pure=False)
-                futures[f] = (rel, src, dst)
+            def submit(task, suffix=""):
+                rel, src, dst, tmp = task
+                return client.submit(smooth_one, cli, src, dst, tmp, options, args.timeout,
+                                     key="implicit-fairing-%s-%s%s" % (run_id, rel, suffix),
+                                     pure=False)
+
+            def lost(task, e, what):
+                return {"input": task[1], "output": task[2], "status": "failed",
+                        "returncode": None, "error": "%s: %s: %s" % (what, type(e).__name__, e)}
+
+            futures = {submit(task): task for task in todo}
             bar = None
             if progress:
                 try:
@@ -245,20 +252,28 @@ def main(argv):
                     bar = tqdm(total=len(futures), unit="mesh", file=sys.stderr)
                 except ImportError:
                     sys.stderr.write("batch.py: no progress bar (python3-tqdm is missing)\n")
-            failed = 0
-            for f in as_completed(futures):
-                rel, src, dst = futures[f]
-                try:
-                    r = f.result()
-                except Exception as e:  # the task itself died (worker lost, KilledWorker, ...)
-                    r = {"input": src, "output": dst, "status": "failed", "returncode": None,
-                         "error": "task lost: %s: %s" % (type(e).__name__, e)}
-                r["rel"] = rel
+            failed, orphans = 0, []
+
+            def done(task, r):
+                nonlocal failed
+                r["rel"] = task[0]
                 results.append(r)
                 failed += r["status"] != "ok"
                 if bar:
                     bar.set_postfix(failed=failed, refresh=False)
                     bar.update(1)
+            for f in as_completed(futures):
+                try:
+                    done(futures[f], f.result())
+                except Exception:   # its workers died (KilledWorker): maybe not its fault
+                    orphans.append(futures[f])
+            # A worker that dies (out of memory, killed) takes the tasks running beside it
+            # down too; each such task gets a second chance alone, one at a time.
+            for task in orphans:
+                try:
+                    done(task, submit(task, "-alone").result())
+                except Exception as e:
+                    done(task, lost(task, e, "task lost twice (its worker died; run alone too)"))
             if bar:
                 bar.close()
         finally:

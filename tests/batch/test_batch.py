@@ -7,9 +7,9 @@
 CASE local: a LocalCluster over 30 generated meshes, 7 of them bad (non-manifold, NaN, empty
 file, empty mesh, truncated, PLY bytes named .obj, a face index out of range) and a .txt to
 ignore: per-file outcomes, the errors the CLI gives on its own, exit status, the table and JSON
-report, no partial or temporary file (also after runs killed by --timeout), options passed
-through (bytes equal to a direct CLI run), --resume, top level only without --recursive, the
-CLI leaving an existing OUT untouched on failure.
+report, no partial or temporary file (also after runs killed by --timeout and workers killed
+mid-task), options passed through (bytes equal to a direct CLI run), --resume, top level only
+without --recursive, the CLI leaving an existing OUT untouched on failure.
 CASE cluster: `dask scheduler` and two `dask worker --no-nanny` started as separate processes
 on loopback; batch.py --scheduler tcp://127.0.0.1:PORT must run every file in those two
 worker processes; a --cli missing on the workers fails every file with a message naming it.
@@ -234,6 +234,31 @@ def case_local():
     left = os.listdir(os.path.join(ARGS.work, "slow-out"))   # hidden folders included
     check(left == ["batch-report.json"], "a killed run left %r" % left)
     print("ok: runs killed by --timeout leave no file")
+
+    # A worker killed while smoothing (as the out-of-memory killer would): that file fails
+    # with the reason, the files that ran beside it get a second chance and succeed, and
+    # nothing partial is left.
+    crash = os.path.join(ARGS.work, "crash")
+    os.makedirs(crash)
+    for f in ("m00.ply", "m03.stl"):
+        shutil.copy(os.path.join(src, f), crash)
+    shutil.copy(os.path.join(src, "m00.ply"), os.path.join(crash, "crash_me.ply"))
+    killer = os.path.join(ARGS.work, "killer.sh")
+    with open(killer, "w") as f:
+        f.write('#!/bin/sh\ncase "$(basename "$1")" in crash*) kill -9 $PPID; exit 1;; esac\n'
+                'exec "%s" "$@"\n' % ARGS.tool)
+    os.chmod(killer, 0o755)
+    crash_out = os.path.join(ARGS.work, "crash-out")
+    batch([crash, crash_out, "--workers", "2", "--cli", killer], expect=1)
+    with open(os.path.join(crash_out, "batch-report.json")) as f:
+        r = {x["rel"]: x for x in json.load(f)["files"]}
+    check(r["crash_me.ply"]["status"] == "failed" and
+          "KilledWorker" in r["crash_me.ply"]["error"], "killed worker: %r" % r["crash_me.ply"])
+    check(r["m00.ply"]["status"] == "ok" and r["m03.stl"]["status"] == "ok",
+          "the files beside a killed worker: %r" % [(x["rel"], x["error"]) for x in r.values()])
+    left = sorted(os.listdir(crash_out))
+    check(left == ["batch-report.json", "m00.ply", "m03.stl"], "after killed workers: %r" % left)
+    print("ok: a killed worker fails its file only, and leaves nothing partial")
 
     # Top level only, good files only: exit 0; a separate report file.
     top = os.path.join(ARGS.work, "top")
