@@ -190,6 +190,73 @@ def print_summary(results, ignored, seconds, report_path, out=sys.stdout):
     out.write("\nreport: %s\n" % report_path)
 
 
+def plan(args, in_dir, out_dir, meshes, run_id):
+    """(results of the files --resume skips, tasks (rel, src, dst, tmp_dir) for the others)."""
+    skipped, todo = [], []
+    for i, rel in enumerate(meshes):
+        dst = output_path(out_dir, rel, args.format)
+        if args.resume and os.path.isfile(dst) and os.path.getsize(dst) > 0:
+            skipped.append({"rel": rel, "input": os.path.join(in_dir, rel), "output": dst,
+                            "status": "skipped", "returncode": None, "error": ""})
+            continue
+        tmp_dir = os.path.join(os.path.dirname(dst), ".batch-%s-%d" % (run_id, i))
+        todo.append((rel, os.path.join(in_dir, rel), dst, tmp_dir))
+    return skipped, todo
+
+
+def run(client, todo, cli, options, timeout, run_id, progress):
+    """Submits every task and collects one result per task, in completion order."""
+    from distributed import as_completed
+
+    def submit(task, suffix=""):
+        rel, src, dst, tmp = task
+        return client.submit(smooth_one, cli, src, dst, tmp, options, timeout,
+                             key="implicit-fairing-%s-%s%s" % (run_id, rel, suffix), pure=False)
+
+    futures = {submit(task): task for task in todo}
+    bar = None
+    if progress:
+        try:
+            from tqdm import tqdm
+            bar = tqdm(total=len(futures), unit="mesh", file=sys.stderr)
+        except ImportError:
+            sys.stderr.write("batch.py: no progress bar (python3-tqdm is missing)\n")
+    results, orphans = [], []
+
+    def done(task, r):
+        r["rel"] = task[0]
+        results.append(r)
+        if bar:
+            bar.set_postfix(failed=sum(x["status"] != "ok" for x in results), refresh=False)
+            bar.update(1)
+    for f in as_completed(futures):
+        try:
+            done(futures[f], f.result())
+        except Exception:   # its workers died (KilledWorker): maybe not its fault
+            orphans.append(futures[f])
+    # A worker that dies (out of memory, killed) takes the tasks running beside it down too;
+    # each such task gets a second chance alone, one at a time.
+    for task in orphans:
+        try:
+            done(task, submit(task, "-alone").result())
+        except Exception as e:
+            done(task, {"input": task[1], "output": task[2], "status": "failed",
+                        "returncode": None,
+                        "error": "task lost twice (its worker died; run alone too): %s: %s"
+                                 % (type(e).__name__, e)})
+    if bar:
+        bar.close()
+    return results
+
+
+def write_report(path, report, run_id):
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    tmp = path + ".tmp-" + run_id
+    with open(tmp, "w") as f:
+        json.dump(report, f, indent=1)
+    os.replace(tmp, path)
+
+
 def main(argv):
     args, parser = parse_args(argv)
     in_dir, out_dir = os.path.abspath(args.in_dir), os.path.abspath(args.out_dir)
@@ -207,22 +274,13 @@ def main(argv):
     options = cli_options(args.passthrough)
     meshes, ignored = find_inputs(in_dir, args.recursive)
     os.makedirs(out_dir, exist_ok=True)
-
     run_id = uuid.uuid4().hex[:8]
-    results, todo = [], []
-    for i, rel in enumerate(meshes):
-        dst = output_path(out_dir, rel, args.format)
-        if args.resume and os.path.isfile(dst) and os.path.getsize(dst) > 0:
-            results.append({"rel": rel, "input": os.path.join(in_dir, rel), "output": dst,
-                            "status": "skipped", "returncode": None, "error": ""})
-            continue
-        tmp_dir = os.path.join(os.path.dirname(dst), ".batch-%s-%d" % (run_id, i))
-        todo.append((rel, os.path.join(in_dir, rel), dst, tmp_dir))
+    results, todo = plan(args, in_dir, out_dir, meshes, run_id)
 
     t0 = time.monotonic()
     if todo:
         try:
-            from distributed import as_completed
+            import distributed  # noqa: F401
         except ImportError:
             sys.stderr.write("batch.py: Dask distributed is not installed for %s: install Debian's "
                              "python3-distributed and run with /usr/bin/python3\n" % sys.executable)
@@ -234,78 +292,31 @@ def main(argv):
                              "running there, and the port open?)\n" % (args.scheduler, e))
             return 2
         try:
-            def submit(task, suffix=""):
-                rel, src, dst, tmp = task
-                return client.submit(smooth_one, cli, src, dst, tmp, options, args.timeout,
-                                     key="implicit-fairing-%s-%s%s" % (run_id, rel, suffix),
-                                     pure=False)
-
-            def lost(task, e, what):
-                return {"input": task[1], "output": task[2], "status": "failed",
-                        "returncode": None, "error": "%s: %s: %s" % (what, type(e).__name__, e)}
-
-            futures = {submit(task): task for task in todo}
-            bar = None
-            if progress:
-                try:
-                    from tqdm import tqdm
-                    bar = tqdm(total=len(futures), unit="mesh", file=sys.stderr)
-                except ImportError:
-                    sys.stderr.write("batch.py: no progress bar (python3-tqdm is missing)\n")
-            failed, orphans = 0, []
-
-            def done(task, r):
-                nonlocal failed
-                r["rel"] = task[0]
-                results.append(r)
-                failed += r["status"] != "ok"
-                if bar:
-                    bar.set_postfix(failed=failed, refresh=False)
-                    bar.update(1)
-            for f in as_completed(futures):
-                try:
-                    done(futures[f], f.result())
-                except Exception:   # its workers died (KilledWorker): maybe not its fault
-                    orphans.append(futures[f])
-            # A worker that dies (out of memory, killed) takes the tasks running beside it
-            # down too; each such task gets a second chance alone, one at a time.
-            for task in orphans:
-                try:
-                    done(task, submit(task, "-alone").result())
-                except Exception as e:
-                    done(task, lost(task, e, "task lost twice (its worker died; run alone too)"))
-            if bar:
-                bar.close()
+            results += run(client, todo, cli, options, args.timeout, run_id, progress)
         finally:
             client.close()
             if cluster:
                 cluster.close()
-        # Temporaries of tasks whose worker died before its own clean-up.
-        for _, _, _, tmp_dir in todo:
+        for _, _, _, tmp_dir in todo:   # of tasks whose worker died before cleaning up
             shutil.rmtree(tmp_dir, ignore_errors=True)
     seconds = time.monotonic() - t0
 
     results.sort(key=lambda r: r["rel"])
     for r in results:
-        if r["status"] != "ok":
-            r["output"] = None if not os.path.exists(r["output"]) else r["output"]
-    report = {"in_dir": in_dir, "out_dir": out_dir, "cli": cli, "options": options,
-              "scheduler": args.scheduler or "LocalCluster(%d)" % args.workers,
-              "seconds": round(seconds, 3),
-              "counts": {s: sum(r["status"] == s for r in results)
-                         for s in ("ok", "failed", "skipped")},
-              "ignored": ignored, "files": results}
-    os.makedirs(os.path.dirname(report_path), exist_ok=True)
-    tmp_report = report_path + ".tmp-" + run_id
-    with open(tmp_report, "w") as f:
-        json.dump(report, f, indent=1)
-    os.replace(tmp_report, report_path)
+        if r["status"] != "ok" and not os.path.exists(r["output"]):
+            r["output"] = None
+    counts = {s: sum(r["status"] == s for r in results) for s in ("ok", "failed", "skipped")}
+    write_report(report_path, {
+        "in_dir": in_dir, "out_dir": out_dir, "cli": cli, "options": options,
+        "scheduler": args.scheduler or "LocalCluster(%d)" % args.workers,
+        "seconds": round(seconds, 3), "counts": counts, "ignored": ignored, "files": results},
+        run_id)
     print_summary(results, ignored, seconds, report_path)
     if not meshes:
         sys.stderr.write("batch.py: no meshes (%s) in %s%s\n" % (
             " ".join(MESH_EXTENSIONS), in_dir, "" if args.recursive else " (try --recursive)"))
         return 2
-    return 1 if report["counts"]["failed"] else 0
+    return 1 if counts["failed"] else 0
 
 
 if __name__ == "__main__":
