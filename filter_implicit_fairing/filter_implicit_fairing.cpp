@@ -135,12 +135,15 @@ void FilterImplicitFairing::initParameters(fairing_plugin::FilterId id, const Me
 {
     const bool selection = current != nullptr && vcg_adapters::hasSelection(current->cm);
     const Values d = defaults(operatorOf(id));
-    par.addParam(RichFloat(kTimeStep, static_cast<float>(d.timeStep), tr("Time step (dimensionless)"),
-        tr("Strength of each step (the paper's lambda*dt) independent of the mesh's units: the "
-           "scale-dependent and curvature operators multiply it by the power of the mean edge "
-           "length their units need, so the same value works in millimetres and metres. The "
-           "default removes noise of about one edge length; larger values smooth more. The "
-           "absolute value used is logged.")));
+    par.addParam(RichFloat(kTimeStep, static_cast<float>(d.timeStep),
+        tr("Time step (0 = automatic)"),
+        tr("Strength of each step (the paper's lambda*dt). 0, the default, chooses it from the "
+           "mesh itself: the noise along the normals is estimated and the step that minimizes "
+           "the expected error (Stein's unbiased risk estimate) is taken; the choice and the "
+           "noise level are logged. Any other value is dimensionless, independent of the mesh's "
+           "units: the scale-dependent and curvature operators multiply it by the power of the "
+           "mean edge length their units need, so the same value works in millimetres and "
+           "metres; larger values smooth more.")));
     par.addParam(RichInt(kSteps, d.steps, tr("Smoothing steps"),
         tr("Number of implicit steps; each one applies the time step again.")));
     par.addParam(RichEnum(kOrder, d.order, labels(orderLabels()), tr("Operator order"),
@@ -242,9 +245,15 @@ fairing_plugin::RunFigures figuresOf(const fairing::Result& r, double seconds)
                       {"volume_before", r.volume_before},
                       {"volume_after", r.volume_after},
                       {"lambda_dt", r.lambda_dt},
+                      {"time_step", r.time_step},
+                      {"noise_level", r.noise_level},
+                      {"noise_level_edges", r.noise_level_edges},
+                      {"mean_edge_length", r.mean_edge_length},
+                      {"strength_seconds", r.strength_seconds},
                       {"engine_seconds", r.seconds},
                       {"seconds", seconds}};
-    figures.flags = {{"explicit_unstable", r.explicit_unstable}};
+    figures.flags = {{"explicit_unstable", r.explicit_unstable},
+                     {"automatic_time_step", r.automatic_time_step}};
     return figures;
 }
 
@@ -315,17 +324,24 @@ void FilterImplicitFairing::logRun(fairing_plugin::FilterId id, const Values& v,
                         "clamped to [0,1]")
                     .arg(cs.invertQuality ? " (inverted)" : "")
                     .arg(crep.zeroWeights).arg(crep.qualityClamped));
-    logSolves(o, r);
+    logSolves(r);
     logComponents(o, r);
     logWarnings(r);
     logLine(QString("Time: %1 s in the engine, %2 s in total")
                 .arg(num(r.seconds)).arg(num(seconds)));
 }
 
-void FilterImplicitFairing::logSolves(const fairing::Options& o, const fairing::Result& r)
+void FilterImplicitFairing::logSolves(const fairing::Result& r)
 {
+    if (r.automatic_time_step)
+        logLine(QString("Time step: automatic, %1 (estimated noise along the normals: %2 = %3 "
+                        "mean edge lengths; chosen in %4 s, %5 Lanczos steps)")
+                    .arg(num(r.time_step)).arg(num(r.noise_level)).arg(num(r.noise_level_edges))
+                    .arg(num(r.strength_seconds)).arg(r.strength_iterations));
+    else
+        logLine(QString("Time step: %1 (given)").arg(num(r.time_step)));
     logLine(QString::fromUtf8("Steps: %1; absolute λdt per step: %2 (time step %3)")
-                .arg(r.steps).arg(num(r.lambda_dt)).arg(num(o.time_step)));
+                .arg(r.steps).arg(num(r.lambda_dt)).arg(num(r.time_step)));
     for (const fairing::SolveReport& s : r.solves)
         logLine(QString("  step %1, %2: %3 CG iterations%4, residual %5%6")
                     .arg(s.step).arg(QString::fromStdString(s.system)).arg(s.iterations)

@@ -42,7 +42,7 @@ private:
                 const fairing::Options& o, const vcg_adapters::ConstraintSettings& cs,
                 const vcg_adapters::ConstraintReport& crep, const fairing::Result& r,
                 long vertices, double seconds);
-    void logSolves(const fairing::Options& o, const fairing::Result& r);
+    void logSolves(const fairing::Result& r);
     void logComponents(const fairing::Options& o, const fairing::Result& r);
     void logWarnings(const fairing::Result& r);
 };

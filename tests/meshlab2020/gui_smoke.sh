@@ -83,7 +83,7 @@ dialog="${WIDTH}x${HEIGHT}+${X}+${Y}"
 echo "dialog window: $dialog"
 shot dialog
 ocr "$work/dialog.png" --crop "$dialog" > dialog.txt
-for t in "Time step (dimensionless)" "Operator order" "Affect only selection" "Preview"; do
+for t in "Time step" "automatic" "Operator order" "Affect only selection" "Preview"; do
     grep -qF "$t" dialog.txt || { cat dialog.txt; fail "dialog lacks '$t'"; }
     echo "dialog shows: $t"
 done

@@ -104,8 +104,8 @@ quality_nan)      refused sphere umbrella --quality nan qualityWeights=true -- \
 quality_negative) ok sphere umbrella --quality negative qualityWeights=true -- "quality values clamped" ;;
 quality_above1)   ok sphere umbrella --quality above1 qualityWeights=true -- "quality values clamped" ;;
 quality_absent)   refused sphere umbrella qualityWeights=true -- "has no vertex quality" ;;
-timestep_zero)    ok sphere curvature_flow timeStep=0 -- "Steps: 0"
-                  mlbad same in.ply out.ply ;;
+timestep_zero)    # 0 asks for the automatic strength (issue 11); it used to be a no-op
+                  ok sphere curvature_flow timeStep=0 -- "Time step: automatic" "Steps: 1" ;;
 timestep_negative) refused sphere curvature_flow timeStep=-1 -- "time step must be a finite number >= 0" ;;
 timestep_huge)    # stable, or refused with the residual reached
                   mlbad gen sphere in.ply

@@ -41,7 +41,10 @@ for line in open(sys.argv[1], encoding="utf-8"):
 expect = {"iterations": "int", "inner_iterations": "int", "steps": "int", "vertices_moved": "int", "vertices_fixed": "int",
           "residual": "double", "volume_before": "double", "volume_after": "double",
           "lambda_dt": "double", "seconds": "double", "engine_seconds": "double",
-          "warnings": "int", "unconverged_solves": "int", "explicit_unstable": "bool"}
+          "warnings": "int", "unconverged_solves": "int", "explicit_unstable": "bool",
+          "time_step": "double", "automatic_time_step": "bool", "noise_level": "double",
+          "noise_level_edges": "double", "mean_edge_length": "double",
+          "strength_seconds": "double"}
 if sorted(out) != sorted(expect):
     print("FAIL: the output map has %s, expected %s" % (sorted(out), sorted(expect))); sys.exit(1)
 for k, t in expect.items():

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include <climits>
+#include <exception>
 #include <cstdio>
 #include <map>
 #include <sstream>
@@ -73,15 +74,6 @@ void addFiles(CLI::App& app, CommandLine& cl)
         ->required();
 }
 
-std::string timeStepDefaults()
-{
-    using filter_parameters::defaultTimeStep;
-    return "Default: " + formatNumber(defaultTimeStep(fairing::Operator::Umbrella)) +
-           " umbrella, " + formatNumber(defaultTimeStep(fairing::Operator::ScaleDependent)) +
-           " scale-dependent, " +
-           formatNumber(defaultTimeStep(fairing::Operator::CurvatureFlow)) + " curvature";
-}
-
 // The options that mirror a filter parameter: its .mlx name in brackets.
 void addFilterParameters(CLI::App& app, CommandLine& cl, const Values& d)
 {
@@ -89,16 +81,31 @@ void addFilterParameters(CLI::App& app, CommandLine& cl, const Values& d)
               "umbrella (eq. 7, uniform weights), scale-dependent (eq. 11, Fujiwara's 1/|edge| "
               "weights) or curvature (eq. 14, the cotangent curvature flow). Default: curvature",
               {"umbrella", "scale-dependent", "curvature"}, "NAME");
-    app.add_option_function<double>(
+    app.add_option_function<std::string>(
            "--time-step",
-           [&cl](double t) {
-               cl.timeStepGiven = true;
-               cl.timeStep = t;
+           [&cl](const std::string& t) {
+               cl.timeStepGiven = t != "auto";
+               if (cl.timeStepGiven) cl.timeStep = std::stod(t);
            },
-           "[timeStep] Dimensionless time step (>= 0): lambda*dt = T * (mean edge)^(2*order) "
-           "for scale-dependent and curvature, T for umbrella and --normalized. " +
-               timeStepDefaults() + " (the filters' defaults)")
-        ->type_name("T");
+           "[timeStep] auto (or 0): chosen from the mesh, by the noise it estimates along the "
+           "normals (Stein's unbiased risk estimate; --json reports time_step and "
+           "noise_level). Or a dimensionless time step T > 0: lambda*dt = T * (mean "
+           "edge)^(2*order) for scale-dependent and curvature, T for umbrella and --normalized "
+           "(with L^2, 10, 2.5 and 22.5 remove noise of about one edge length). Default: auto")
+        ->type_name("auto|T")
+        ->check(CLI::Validator(
+            [](std::string& t) -> std::string {
+                if (t == "auto") return std::string();
+                std::size_t used = 0;
+                try {
+                    std::stod(t, &used);
+                } catch (const std::exception&) {
+                    used = 0;
+                }
+                return used == t.size() && used > 0 ? std::string()
+                                                    : "expected 'auto' or a number, got '" + t + "'";
+            },
+            "auto|T"));
     app.add_option("--steps", cl.steps,
                    "[stepSmoothNum] Number of time steps. Default: " + std::to_string(d.steps))
         ->type_name("N");

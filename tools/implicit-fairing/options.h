@@ -13,7 +13,7 @@ namespace implicit_fairing {
 struct CommandLine {
     std::string in, out;
     std::string operatorName = "curvature";  // umbrella | scale-dependent | curvature
-    bool timeStepGiven = false;              // otherwise the operator's default time step
+    bool timeStepGiven = false;              // otherwise automatic (--time-step auto)
     double timeStep = 0;
     int steps = 1;
     int order = 2;                           // 1 | 2

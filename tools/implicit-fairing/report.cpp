@@ -41,7 +41,12 @@ std::string jsonReport(const RunFacts& f)
                                                                       : "explicit";
     j["boundary"] = f.cl.boundary;
     j["steps"] = r.steps;
-    j["time_step"] = o.time_step;
+    j["time_step"] = r.time_step;
+    j["automatic_time_step"] = r.automatic_time_step;
+    j["noise_level"] = r.noise_level;
+    j["noise_level_edges"] = r.noise_level_edges;
+    j["mean_edge_length"] = r.mean_edge_length;
+    j["strength_seconds"] = r.strength_seconds;
     j["lambda_dt"] = r.lambda_dt;
     j["cg_iterations"] = r.total_iterations;
     j["inner_iterations"] = r.total_inner_iterations;
@@ -67,12 +72,15 @@ std::string summaryLine(const RunFacts& f)
                                    ? "volume " + formatNumber(r.volume_before) + " -> " +
                                          formatNumber(r.volume_after) + "; "
                                    : "";
+    const std::string automatic =
+        r.automatic_time_step ? printfString(" (automatic: noise %.3g edges)", r.noise_level_edges)
+                              : std::string();
     return printfString(
-        "%s: %s: %ld vertices (%d moved), %ld faces; %s, order %d, %d step%s, lambda_dt %g; "
-        "%d CG iterations, residual %.3g; %s%.6g s (engine %.6g s)",
+        "%s: %s: %ld vertices (%d moved), %ld faces; %s, order %d, %d step%s, time step %g%s, "
+        "lambda_dt %g; %d CG iterations, residual %.3g; %s%.6g s (engine %.6g s)",
         kTool, f.cl.out.c_str(), f.vertices, r.vertices_moved, f.faces,
         f.cl.operatorName.c_str(), f.options.order, r.steps, r.steps == 1 ? "" : "s",
-        r.lambda_dt, r.total_iterations, r.max_residual, volume.c_str(), f.secondsTotal,
+        r.time_step, automatic.c_str(), r.lambda_dt, r.total_iterations, r.max_residual, volume.c_str(), f.secondsTotal,
         r.seconds);
 }
 

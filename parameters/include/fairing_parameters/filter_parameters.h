@@ -50,12 +50,16 @@ inline const std::vector<std::string>& boundaryModeLabels() {
     return v;
 }
 
-// One-click defaults. With L^2 the three operators damp a mode of wavelength k (in edges) by
-// 1/(1 + t c (2 pi / k)^4) on a regular mesh, c = 1/16 (umbrella), 1/4 (scale-dependent),
-// 1/36 (curvature flow); these steps give all three the same filter, which removes noise of
-// wavelength up to about four edges and keeps features over about sixteen. Measured on the main
-// job's noisy torus (noise 0.25 edge): RMS error to the clean surface 0.25 -> 0.07 edge for each.
-inline double defaultTimeStep(fairing::Operator op) {
+// The time step's default: 0 = automatic (the engine chooses it from the mesh, issue 11;
+// fairing::Options::time_step left empty). 0 was a no-op before the automatic strength existed;
+// any other value is passed on as is, so scripts with an explicit time step run exactly as before.
+constexpr double kAutomaticTimeStep = 0.0;
+
+// Reference strengths for an explicit time step: with L^2 the three operators damp a mode of
+// wavelength k (in edges) by 1/(1 + t c (2 pi / k)^4) on a regular mesh, c = 1/16 (umbrella),
+// 1/4 (scale-dependent), 1/36 (curvature flow); these steps give all three the same filter, which
+// removes noise of wavelength up to about four edges and keeps features over about sixteen.
+inline double referenceTimeStep(fairing::Operator op) {
     switch (op) {
     case fairing::Operator::Umbrella: return 10.0;
     case fairing::Operator::ScaleDependent: return 2.5;
@@ -66,7 +70,7 @@ inline double defaultTimeStep(fairing::Operator op) {
 
 // Parameter values as a host reads them (enums as indices).
 struct Values {
-    double timeStep = 10.0;
+    double timeStep = kAutomaticTimeStep;
     int steps = 1;
     int order = 1;        // index into orderLabels(): L^2
     int integration = 0;  // index into integrationLabels()
@@ -82,10 +86,8 @@ struct Values {
     bool acceptUnconverged = false;
 };
 
-inline Values defaults(fairing::Operator op) {
-    Values v;
-    v.timeStep = defaultTimeStep(op);
-    return v;
+inline Values defaults(fairing::Operator) {
+    return Values();
 }
 
 // Throws fairing::Error naming the parameter when a value is out of its range.
@@ -98,7 +100,7 @@ inline fairing::Options toOptions(fairing::Operator op, const Values& v) {
     };
     fairing::Options o;
     o.op = op;
-    o.time_step = v.timeStep;
+    if (v.timeStep != kAutomaticTimeStep) o.time_step = v.timeStep;
     o.steps = v.steps;
     o.order = index(v.order, orderLabels(), kOrder) + 1;
     const int integration = index(v.integration, integrationLabels(), kIntegration);
