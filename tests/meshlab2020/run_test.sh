@@ -120,7 +120,7 @@ dump)
     python3 - "$here" <<'EOF'
 import re, sys
 text = open("dump.txt", encoding="utf-8").read()
-descs = ["Time step (dimensionless)", "Smoothing steps", "Operator order", "Integration",
+descs = ["Time step (0 = automatic)", "Smoothing steps", "Operator order", "Integration",
          "Preserve volume", "Open components", "Boundary", "Use vertex quality as smoothing weight",
          "Invert quality weight", "Affect only selection", "Solver tolerance",
          "Max solver iterations", "Freeze operator", "Accept unconverged solves"]
