@@ -10,8 +10,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
 #include <limits>
 
 namespace fairing {
@@ -147,32 +145,11 @@ double estimate_noise(const SparseOperator& op, const HalfEdgeMesh& mesh, const 
 
 namespace {
 
-// The filter of `steps` steps of tau = lambda / steps, as functions of an eigenvalue g of G.
+// The filter of `steps` steps of lambda each (fair() gives every step the whole time step).
 struct Filter {
     double lambda = 0;
     int steps = 1;
     bool explicit_steps = false;
-
-    // log of the per-mode gain of one step, times steps: the whole filter is exp(this).
-    double log_gain(double g) const {
-        const double t = lambda / steps * g;
-        return explicit_steps ? steps * std::log(std::abs(1 - t)) : -steps * std::log1p(t);
-    }
-    // h(g): how much of a mode is kept.
-    double keep(double g) const {
-        g = std::max(g, 0.0);
-        if (explicit_steps) return std::pow(1 - lambda / steps * g, steps);
-        return std::exp(log_gain(g));
-    }
-    // phi(g) = (1 - h(g)) / g: the displacement per unit of u; lambda at g = 0.
-    double move(double g) const {
-        g = std::max(g, 0.0);
-        const double t = lambda / steps * g;
-        if (t < 1e-300) return lambda;
-        if (explicit_steps && t >= 0.5) return (1 - keep(g)) / g;
-        const double l = explicit_steps ? steps * std::log1p(-t) : -steps * std::log1p(t);
-        return -std::expm1(l) / g;
-    }
 };
 
 // Three independent Lanczos processes on G (one per column), in the coordinates q = D^-1/2 v,
@@ -254,62 +231,70 @@ void advance(Context& ctx, Lanczos& l, int j, bool measure) {
     l.previous.swap(l.current);
 }
 
-// Eigenvalues and eigenvectors of T_k.
-struct Ritz {
-    Eigen::VectorXd theta;
-    Eigen::MatrixXd vectors;
-};
-
-Ritz ritz(const std::vector<double>& alpha, const std::vector<double>& beta, int k) {
-    Ritz r;
-    if (k == 0) return r;
-    Eigen::VectorXd diagonal = Eigen::Map<const Eigen::VectorXd>(alpha.data(), k);
-    Eigen::VectorXd sub = k > 1 ? Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(beta.data(), k - 1))
-                                : Eigen::VectorXd(0);
-    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver;
-    solver.computeFromTridiagonal(diagonal, sub, Eigen::ComputeEigenvectors);
-    r.theta = solver.eigenvalues();
-    r.vectors = solver.eigenvectors();
-    return r;
-}
-
 int size_of(const Lanczos& l, int c) {
     return std::min(static_cast<int>(l.alpha[c].size()), static_cast<int>(l.beta[c].size()) + 1);
 }
 
-// Quadrature sum_j (Q_0j)^2 fn(theta_j) over the Ritz pairs.
-template <class Fn>
-double quadrature(const Ritz& r, Fn fn) {
-    double s = 0;
-    for (int j = 0; j < r.theta.size(); ++j) s += r.vectors(0, j) * r.vectors(0, j) * fn(r.theta(j));
-    return s;
+// The filter applied to e1 through the Lanczos tridiagonal matrix T_k: w_j = (I + lambda T)^-1
+// w_{j-1} (explicit: (I - lambda T) w_{j-1}), w_0 = e1, by the Thomas algorithm (I + lambda T
+// is symmetric positive definite). Returns the displacement coefficients
+// phi(T) e1 = lambda sum w_j (j = 1..s; explicit j = 0..s-1) and sets kept = e1' w_s, the
+// Gauss quadrature of e1' h(T) e1 (Golub & Meurant). O(steps k) per lambda, no eigenvectors.
+Eigen::VectorXd filtered(const Lanczos& l, int c, const Filter& f, double& kept) {
+    const int k = size_of(l, c);
+    Eigen::VectorXd w = Eigen::VectorXd::Zero(k), sum = Eigen::VectorXd::Zero(k), next(k);
+    kept = 0;
+    if (k == 0) return sum;
+    w(0) = 1;
+    const std::vector<double>& a = l.alpha[c];
+    const std::vector<double>& b = l.beta[c];
+    std::vector<double> pivot(k), upper(k);
+    if (!f.explicit_steps) {  // LDL' of I + lambda T, once
+        for (int i = 0; i < k; ++i) {
+            const double off = i > 0 ? f.lambda * b[i - 1] : 0.0;
+            pivot[i] = 1 + f.lambda * a[i] - (i > 0 ? off * upper[i - 1] : 0.0);
+            pivot[i] = std::max(pivot[i], 1e-300);
+            upper[i] = i + 1 < k ? f.lambda * b[i] / pivot[i] : 0.0;
+        }
+    }
+    for (int step = 0; step < f.steps; ++step) {
+        if (f.explicit_steps) {
+            sum += w;
+            for (int i = 0; i < k; ++i) {
+                double t = a[i] * w(i);
+                if (i > 0) t += b[i - 1] * w(i - 1);
+                if (i + 1 < k) t += b[i] * w(i + 1);
+                next(i) = w(i) - f.lambda * t;
+            }
+            w.swap(next);
+        } else {
+            for (int i = 0; i < k; ++i)  // forward: L z = w
+                w(i) = (w(i) - (i > 0 ? f.lambda * b[i - 1] * w(i - 1) : 0.0)) / pivot[i];
+            for (int i = k - 2; i >= 0; --i) w(i) -= upper[i] * w(i + 1);  // back: L' x = z
+            sum += w;
+        }
+    }
+    kept = w(0);
+    return f.lambda * sum;
 }
 
-// tr H(lambda) over the data rows for every lambda of the grid, by Lanczos quadrature on the
-// probes (each column one probe).
+// tr H(lambda) over the data rows for every lambda of the grid (each probe column's quadrature,
+// averaged).
 std::vector<double> traces(const Context& ctx, const Lanczos& z, double count,
                            const std::vector<double>& grid) {
     std::vector<double> out(grid.size(), 0.0);
     int probes = 0;
-    std::array<Ritz, 3> rz;
-    for (int c = 0; c < 3; ++c) {
-        rz[c] = ritz(z.alpha[c], z.beta[c], size_of(z, c));
-        probes += rz[c].theta.size() > 0;
-    }
+    for (int c = 0; c < 3; ++c) probes += size_of(z, c) > 0;
     for (std::size_t g = 0; g < grid.size(); ++g) {
         const Filter filter{grid[g], ctx.p.steps, ctx.p.explicit_integration};
-        for (int c = 0; c < 3; ++c)
-            if (rz[c].theta.size() > 0)
-                out[g] += count / probes * quadrature(rz[c], [&](double t) { return filter.keep(t); });
+        for (int c = 0; c < 3; ++c) {
+            if (size_of(z, c) == 0) continue;
+            double kept = 0;
+            filtered(z, c, filter, kept);
+            out[g] += count / probes * kept;
+        }
     }
     return out;
-}
-
-// Coefficients of r_c(lambda) on the Lanczos basis: |u_c| Q phi(Theta) Q^T e1.
-Eigen::VectorXd displacement(const Ritz& r, double start_norm, const Filter& filter) {
-    Eigen::VectorXd phi(r.theta.size());
-    for (int j = 0; j < r.theta.size(); ++j) phi(j) = filter.move(r.theta(j)) * r.vectors(0, j);
-    return start_norm * (r.vectors * phi);
 }
 
 std::uint64_t mix(std::uint64_t v) {  // splitmix64: probe signs independent of thread count
@@ -366,64 +351,83 @@ int argmin(const std::vector<double>& v) {
 }
 
 // Relative change of the curves between two checkpoints below which a point counts as converged.
-constexpr double kConverged = 5e-3;
+constexpr double kConverged = 2e-2;
 // The Lanczos process runs until its curves are converged up to this factor above the risk's
 // minimizer (and the minimizer has settled).
-constexpr double kMargin = 2;
+constexpr double kMargin = 1.5;
 constexpr int kMaxSteps = 400;
 // Rows of the sketch of the normal components (exact below this many data vertices).
-constexpr int kSketch = 4096;
+constexpr int kSketch = 8192;
 // Second pass: points of the final lambda grid.
 constexpr int kGrid = 16;
 
 // A sketch of the normal components n_i . r_i: CountSketch (Charikar, Chen & Farach-Colton
 // 2002) of every basis vector's normal part, so that |sketch of r(lambda)|^2 estimates
-// RSS_n(lambda) to about sqrt(2 / rows) at every checkpoint without keeping the basis. With no
-// more data vertices than rows it is exact (one row per vertex).
-struct Sketch {
-    int rows = 0;
-    bool exact = false;
-    std::vector<int> bucket;     // per vertex, -1 off the data
-    std::vector<float> sign;
-    std::array<std::vector<std::vector<float>>, 3> columns;  // [c][j]: rows floats
-
-    Sketch() = default;
+// RSS_n(lambda) to about sqrt(2 / rows) without keeping the basis (the error is common to all
+// lambda: the same buckets serve every point of the curve). With no more data vertices than
+// rows it is exact (one row per vertex).
+class Sketch {
+public:
     Sketch(const Context& ctx, int data_count) {
-        exact = data_count <= kSketch;
-        rows = exact ? data_count : kSketch;
-        bucket.assign(ctx.n, -1);
-        sign.assign(ctx.n, 1.0f);
+        exact_ = data_count <= kSketch;
+        rows_ = exact_ ? data_count : kSketch;
+        bucket_.assign(ctx.n, -1);
+        sign_.assign(ctx.n, 1.0f);
         int next = 0;
         for (int i = 0; i < ctx.n; ++i) {
             if (!ctx.data[i]) continue;
             const std::uint64_t h = mix(static_cast<std::uint64_t>(i) + 0x5bd1e995ull);
-            bucket[i] = exact ? next++ : static_cast<int>(h % static_cast<std::uint64_t>(rows));
-            if (!exact) sign[i] = (h >> 40) & 1 ? 1.0f : -1.0f;
+            bucket_[i] = exact_ ? next++ : static_cast<int>(h % static_cast<std::uint64_t>(rows_));
+            if (!exact_) sign_[i] = (h >> 40) & 1 ? 1.0f : -1.0f;
         }
     }
+    bool exact() const { return exact_; }
+    // Adds the current basis vector of every active column.
     void add(const Lanczos& u, const Positions& normals) {
         for (int c = 0; c < 3; ++c) {
             if (!u.active[c]) continue;
-            std::vector<float> col(rows, 0.0f);
-            for (std::size_t i = 0; i < bucket.size(); ++i)
-                if (bucket[i] >= 0)
-                    col[bucket[i]] += sign[i] * static_cast<float>(normals(i, c) * u.current(i, c));
-            columns[c].push_back(std::move(col));
+            if (used_ == columns_.cols())
+                columns_.conservativeResize(rows_, std::max<Eigen::Index>(24, 2 * used_));
+            auto col = columns_.col(used_);
+            col.setZero();
+            for (std::size_t i = 0; i < bucket_.size(); ++i)
+                if (bucket_[i] >= 0)
+                    col(bucket_[i]) += sign_[i] * static_cast<float>(normals(i, c) * u.current(i, c));
+            index_[c].push_back(static_cast<int>(used_++));
         }
     }
-    // |sum_c S_c y_c|^2
-    double rss(const std::array<Eigen::VectorXd, 3>& y) const {
-        std::vector<double> v(rows, 0.0);
-        for (int c = 0; c < 3; ++c)
-            for (int j = 0; j < y[c].size(); ++j) {
-                const float* col = columns[c][j].data();
-                const double a = y[c](j);
-                for (int r = 0; r < rows; ++r) v[r] += a * col[r];
+    // |sum_c S_c y_c(lambda)|^2 for every lambda of `grid` from `first` to `last` (exclusive),
+    // with y from the Lanczos tridiagonal matrices; NaN elsewhere.
+    std::vector<double> rss(const Context& ctx, const Lanczos& u, const std::vector<double>& grid,
+                            std::size_t first, std::size_t last) const {
+        std::vector<double> out(grid.size(), std::numeric_limits<double>::quiet_NaN());
+        if (last <= first) return out;
+        Eigen::MatrixXf y = Eigen::MatrixXf::Zero(used_, static_cast<Eigen::Index>(last - first));
+        for (std::size_t g = first; g < last; ++g) {
+            const Filter filter{grid[g], ctx.p.steps, ctx.p.explicit_integration};
+            for (int c = 0; c < 3; ++c) {
+                double kept = 0;
+                const Eigen::VectorXd coef = filtered(u, c, filter, kept);
+                const int k = std::min(static_cast<int>(coef.size()), static_cast<int>(index_[c].size()));
+                for (int j = 0; j < k; ++j)
+                    y(index_[c][j], static_cast<Eigen::Index>(g - first)) =
+                        static_cast<float>(u.start_norm[c] * coef(j));
             }
-        double s = 0;
-        for (double a : v) s += a * a;
-        return s;
+        }
+        const Eigen::MatrixXf v = columns_.leftCols(used_) * y;  // one product for all lambda
+        for (std::size_t g = first; g < last; ++g)
+            out[g] = v.col(static_cast<Eigen::Index>(g - first)).cast<double>().squaredNorm();
+        return out;
     }
+
+private:
+    int rows_ = 0;
+    bool exact_ = false;
+    std::vector<int> bucket_;  // per vertex, -1 off the data
+    std::vector<float> sign_;
+    Eigen::MatrixXf columns_;  // rows_ x capacity
+    Eigen::Index used_ = 0;
+    std::array<std::vector<int>, 3> index_;  // [c][j]: column of basis vector j of process c
 };
 
 struct Curves {
@@ -448,23 +452,21 @@ Curves checkpoint(const Context& ctx, const Lanczos& u, const Lanczos& z, const 
                   const Search& s, const Curves& last) {
     Curves now;
     now.trace = traces(ctx, z, s.count, s.grid);
-    now.rss.assign(s.grid.size(), std::numeric_limits<double>::quiet_NaN());
     while (now.first + 1 < s.grid.size() && now.trace[now.first + 1] > 0.98 * s.count)
         ++now.first;
-    std::array<Ritz, 3> ru;
-    for (int c = 0; c < 3; ++c) ru[c] = ritz(u.alpha[c], u.beta[c], size_of(u, c));
+    // Evaluate up to 2 kAhead points past the last checkpoint's converged ones (those up to
+    // kAhead past were evaluated then too, and can be judged now).
+    const std::size_t end = std::min(s.grid.size(), std::max(last.reach, now.first) + 2 * kAhead);
+    now.rss = sketch.rss(ctx, u, s.grid, now.first, end);
     now.reach = now.first;
-    bool settled = true;
-    for (std::size_t g = now.first; g < s.grid.size() && g < now.reach + kAhead; ++g) {
-        const Filter filter{s.grid[g], ctx.p.steps, ctx.p.explicit_integration};
-        std::array<Eigen::VectorXd, 3> y;
-        for (int c = 0; c < 3; ++c) y[c] = displacement(ru[c], u.start_norm[c], filter);
-        now.rss[g] = sketch.rss(y);
-        settled = settled && g < last.rss.size() && std::isfinite(last.rss[g]) &&
-                  std::abs(now.rss[g] - last.rss[g]) <= kConverged * now.rss[g] &&
-                  std::abs(now.trace[g] - last.trace[g]) <=
-                      kConverged * std::max(s.count - now.trace[g], 1e-3 * s.count);
-        if (settled) now.reach = g + 1;
+    for (std::size_t g = now.first; g < end; ++g) {
+        const bool settled =
+            g < last.rss.size() && std::isfinite(last.rss[g]) &&
+            std::abs(now.rss[g] - last.rss[g]) <= kConverged * now.rss[g] &&
+            std::abs(now.trace[g] - last.trace[g]) <=
+                kConverged * std::max(s.count - now.trace[g], 1e-3 * s.count);
+        if (!settled) break;
+        now.reach = g + 1;
     }
     return now;
 }
@@ -475,7 +477,7 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Sketch& sketch, const Positi
               double count, double sigma) {
     Search s;
     s.count = count;
-    const double top = ctx.p.explicit_integration ? 0.999 * ctx.p.max_time_step : 1e7;
+    const double top = ctx.p.explicit_integration ? std::min(ctx.p.max_time_step, 1e7) : 1e7;
     for (double l = 1e-4; l < top; l *= std::pow(10.0, 0.1)) s.grid.push_back(l);
     if (ctx.p.explicit_integration) s.grid.push_back(top);
     Curves last;
@@ -518,69 +520,6 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Sketch& sketch, const Positi
     return s;
 }
 
-// Regenerates the positions' basis and accumulates, per data vertex and grid point, the normal
-// component of r(lambda); returns RSS_n per grid point.
-std::vector<double> second_pass(Context& ctx, Lanczos& u, const Positions& normals,
-                                const std::vector<double>& grid) {
-    const int m = static_cast<int>(grid.size());
-    // Coefficients of r_c(lambda) on the basis: |u_c| Q phi(Theta) Q^T e1.
-    std::array<Eigen::MatrixXd, 3> coef;
-    int k = 0;
-    for (int c = 0; c < 3; ++c) {
-        const int kc = size_of(u, c);
-        k = std::max(k, kc);
-        const Ritz r = ritz(u.alpha[c], u.beta[c], kc);
-        coef[c] = Eigen::MatrixXd::Zero(std::max(kc, 1), m);
-        for (int g = 0; g < m && kc > 0; ++g) {
-            const Filter filter{grid[g], ctx.p.steps, ctx.p.explicit_integration};
-            Eigen::VectorXd phi(kc);
-            for (int j = 0; j < kc; ++j) phi(j) = filter.move(r.theta(j)) * r.vectors(0, j);
-            coef[c].col(g) = u.start_norm[c] * (r.vectors * phi);
-        }
-    }
-    std::vector<float> acc(static_cast<std::size_t>(ctx.p.data_vertices) * m, 0.0f);
-    Lanczos regen;
-    regen.alpha = u.alpha;
-    regen.beta = u.beta;
-    regen.start_norm = u.start_norm;
-    double unused = 0;
-    Lanczos probes;  // start() builds both; the probes are dropped at once
-    start(ctx, regen, probes, unused);
-    probes = Lanczos();
-    std::array<int, 3> sizes{{size_of(u, 0), size_of(u, 1), size_of(u, 2)}};
-    const int data = ctx.p.data_vertices;
-    for (int j = 0; j < k; ++j) {
-        // Accumulate basis vector j (held in regen.current).
-        const double* q = regen.current.data();
-        const int threads = ctx.p.op->threads;
-        (void)threads;
-        std::array<const double*, 3> cj{};
-        for (int c = 0; c < 3; ++c) cj[c] = j < sizes[c] ? coef[c].data() + static_cast<std::ptrdiff_t>(j) : nullptr;
-        const std::array<std::ptrdiff_t, 3> stride{{coef[0].rows(), coef[1].rows(), coef[2].rows()}};
-        FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1))
-        for (int i = 0; i < data; ++i) {
-            if (!ctx.data[i]) continue;
-            double a[3];
-            for (int c = 0; c < 3; ++c) a[c] = cj[c] ? normals(i, c) * q[3 * i + c] : 0.0;
-            float* s = acc.data() + static_cast<std::size_t>(i) * m;
-            for (int g = 0; g < m; ++g) {
-                double v = 0;
-                for (int c = 0; c < 3; ++c)
-                    if (cj[c]) v += a[c] * cj[c][g * stride[c]];
-                s[g] += static_cast<float>(v);
-            }
-        }
-        if (ctx.p.progress) ctx.p.progress(0.7 + 0.3 * (j + 1) / k);
-        if (j + 1 == k) break;
-        multiply(ctx, regen);
-        advance(ctx, regen, j, false);
-    }
-    std::vector<double> rss(m, 0.0);
-    for (int i = 0; i < data; ++i)
-        for (int g = 0; g < m; ++g) rss[g] += static_cast<double>(acc[static_cast<std::size_t>(i) * m + g]) * acc[static_cast<std::size_t>(i) * m + g];
-    return rss;
-}
-
 // The minimizer of SURE on the grid, refined by a parabola in log(lambda) through its
 // neighbours.
 void choose(StrengthEstimate& e) {
@@ -598,16 +537,6 @@ void choose(StrengthEstimate& e) {
     }
     e.time_step = std::exp(log_lambda);
     e.trace_fraction = e.trace[best] / e.data_count;
-    if (std::getenv("FAIRING_AUTO_DEBUG")) {
-        std::fprintf(stderr, "auto: sigma %g N %g lanczos %d chosen %g\n", e.noise_level,
-                     e.data_count, e.lanczos_steps, e.time_step);
-        for (int g = 0; g < m; ++g) {
-            const double rest = e.data_count - e.trace[g];
-            std::fprintf(stderr, "  lambda %10.4g rss %10.4g tr %10.4g sure %10.4g gcv %10.4g\n",
-                         e.grid[g], e.rss[g], e.trace[g], risk[g],
-                         e.rss[g] / (rest * rest) * e.data_count);
-        }
-    }
 }
 
 }  // namespace
@@ -657,20 +586,7 @@ StrengthEstimate estimate_strength(const StrengthProblem& p) {
     const double hi = std::min(found.converged_to, 2.5 * found.minimizer);
     const double lo = std::min(found.minimizer / 2.5, hi / 2);
     for (int g = 0; g < kGrid; ++g) e.grid.push_back(lo * std::pow(hi / lo, g / (kGrid - 1.0)));
-    if (sketch.exact) {
-        std::array<Ritz, 3> ru;
-        for (int c = 0; c < 3; ++c) ru[c] = ritz(u.alpha[c], u.beta[c], size_of(u, c));
-        for (double l : e.grid) {
-            const Filter filter{l, p.steps, p.explicit_integration};
-            std::array<Eigen::VectorXd, 3> y;
-            for (int c = 0; c < 3; ++c) y[c] = displacement(ru[c], u.start_norm[c], filter);
-            e.rss.push_back(sketch.rss(y));
-        }
-    } else {
-        sketch = Sketch();
-        z.previous = z.current = z.product = Positions();  // its tridiagonals suffice now
-        e.rss = second_pass(ctx, u, normals, e.grid);
-    }
+    e.rss = sketch.rss(ctx, u, e.grid, 0, e.grid.size());
     e.trace = traces(ctx, z, count, e.grid);
     choose(e);
     return e;
