@@ -457,9 +457,18 @@ Curves checkpoint(const Context& ctx, const Lanczos& u, const Lanczos& z, const 
     // Evaluate up to 2 kAhead points past the last checkpoint's converged ones (those up to
     // kAhead past were evaluated then too, and can be judged now).
     const std::size_t end = std::min(s.grid.size(), std::max(last.reach, now.first) + 2 * kAhead);
-    now.rss = sketch.rss(ctx, u, s.grid, now.first, end);
+    // Points that had converged keep their values (they move by less than kConverged): the
+    // sketch is evaluated only where the curve may still move.
+    std::size_t from = now.first;
+    while (from < last.reach && from < end && std::isfinite(last.rss[from])) ++from;
+    now.rss = sketch.rss(ctx, u, s.grid, from, end);
+    for (std::size_t g = now.first; g < from; ++g) now.rss[g] = last.rss[g];
     now.reach = now.first;
     for (std::size_t g = now.first; g < end; ++g) {
+        if (g < from) {
+            now.reach = g + 1;
+            continue;
+        }
         const bool settled =
             g < last.rss.size() && std::isfinite(last.rss[g]) &&
             std::abs(now.rss[g] - last.rss[g]) <= kConverged * now.rss[g] &&
