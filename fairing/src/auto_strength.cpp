@@ -368,7 +368,32 @@ constexpr int kGrid = 16;
 // rows it is exact (one row per vertex).
 class Sketch {
 public:
-    Sketch(const Context& ctx, int data_count) {
+    // The volume restoration after each step (sections 3.1-3.2) undoes the part of the normal
+    // residual along one field per restored component: s_i = n_i . (x_i - centroid) for a
+    // rescaling, 1 on the free vertices for a normal offset. It picks the multiple gamma that
+    // restores the volume, gamma = sum a_i n_i.r_i / sum a_i s_i (a_i: vertex areas), so the
+    // residual the user sees is n.r - gamma s: two linear functionals of r per component, kept
+    // exactly beside the sketch.
+    struct Restoration {
+        std::vector<int> component;  // per data vertex, -1: not restored
+        std::vector<double> field, area;
+        int components = 0;
+    };
+
+    Sketch(const Context& ctx, int data_count, Restoration restoration)
+        : restoration_(std::move(restoration)) {
+        const int nc = restoration_.components;
+        volume_.assign(nc, 0.0);
+        field2_.assign(nc, 0.0);
+        count_.assign(nc, 0.0);
+        for (std::size_t i = 0; i < restoration_.component.size(); ++i) {
+            const int k = restoration_.component[i];
+            if (k < 0) continue;
+            volume_[k] += restoration_.area[i] * restoration_.field[i];
+            field2_[k] += restoration_.field[i] * restoration_.field[i];
+            count_[k] += 1;
+        }
+        total_ = data_count;
         exact_ = data_count <= kSketch;
         rows_ = exact_ ? data_count : kSketch;
         bucket_.assign(ctx.n, -1);
@@ -393,14 +418,26 @@ public:
             for (std::size_t i = 0; i < bucket_.size(); ++i)
                 if (bucket_[i] >= 0)
                     col(bucket_[i]) += sign_[i] * static_cast<float>(normals(i, c) * u.current(i, c));
+            std::vector<double> by_volume(restoration_.components, 0.0), by_field = by_volume;
+            for (std::size_t i = 0; i < restoration_.component.size(); ++i) {
+                const int k = restoration_.component[i];
+                if (k < 0) continue;
+                const double v = normals(i, c) * u.current(i, c);
+                by_volume[k] += restoration_.area[i] * v;
+                by_field[k] += restoration_.field[i] * v;
+            }
+            volume_part_.push_back(std::move(by_volume));
+            field_part_.push_back(std::move(by_field));
             index_[c].push_back(static_cast<int>(used_++));
         }
     }
     // |sum_c S_c y_c(lambda)|^2 for every lambda of `grid` from `first` to `last` (exclusive),
     // with y from the Lanczos tridiagonal matrices; NaN elsewhere.
     std::vector<double> rss(const Context& ctx, const Lanczos& u, const std::vector<double>& grid,
-                            std::size_t first, std::size_t last) const {
+                            std::size_t first, std::size_t last,
+                            std::vector<double>* gains = nullptr) const {
         std::vector<double> out(grid.size(), std::numeric_limits<double>::quiet_NaN());
+        if (gains) gains->assign(grid.size(), 1.0);
         if (last <= first) return out;
         Eigen::MatrixXf y = Eigen::MatrixXf::Zero(used_, static_cast<Eigen::Index>(last - first));
         for (std::size_t g = first; g < last; ++g) {
@@ -415,12 +452,51 @@ public:
             }
         }
         const Eigen::MatrixXf v = columns_.leftCols(used_) * y;  // one product for all lambda
-        for (std::size_t g = first; g < last; ++g)
-            out[g] = v.col(static_cast<Eigen::Index>(g - first)).cast<double>().squaredNorm();
+        for (std::size_t g = first; g < last; ++g) {
+            const Eigen::Index col = static_cast<Eigen::Index>(g - first);
+            double gain = 1;
+            out[g] = restored(y.col(col), v.col(col).cast<double>().squaredNorm(), gain);
+            if (gains) (*gains)[g] = gain;
+        }
         return out;
     }
 
 private:
+    // RSS_n after the restoration, and in `gain` the mean factor it multiplies the filtered
+    // noise by. Per component, with V = (a . s) / 3 (the volume seen from the centroid) and the
+    // step's volume loss a . n.r, beta = (V / (V - a . n.r))^(1/3) and the residual is
+    // (1 - beta) s + beta n.r: |.|^2 = (1 - beta)^2 |s|^2 + 2 beta (1 - beta) s . n.r + beta^2
+    // |n.r|^2 over the component. The sketch gives |n.r|^2 for the whole mesh; the components'
+    // share of it is not known separately, so the beta^2 applies to the whole RSS_n when
+    // everything is restored (one closed component, the common case) and to none otherwise.
+    double restored(const Eigen::Ref<const Eigen::VectorXf>& y, double rss_n, double& gain) const {
+        gain = 1;
+        if (restoration_.components == 0) return rss_n;
+        double extra = 0, weighted_beta = 0, covered = 0;
+        for (int k = 0; k < restoration_.components; ++k) {
+            if (!(volume_[k] > 0)) continue;
+            double by_volume = 0, by_field = 0;
+            for (Eigen::Index j = 0; j < used_; ++j) {
+                by_volume += volume_part_[j][k] * y(j);
+                by_field += field_part_[j][k] * y(j);
+            }
+            const double v = volume_[k] / 3;
+            const double left = std::max(v - by_volume, 1e-3 * v);
+            const double beta = std::cbrt(v / left);
+            extra += (1 - beta) * (1 - beta) * field2_[k] + 2 * beta * (1 - beta) * by_field;
+            weighted_beta += beta * count_[k];
+            covered += count_[k];
+        }
+        if (covered == 0) return rss_n;
+        gain = (weighted_beta + (total_ - covered)) / total_;
+        const double beta_all = covered == total_ ? weighted_beta / covered : 1.0;
+        return extra + beta_all * beta_all * rss_n;
+    }
+
+    Restoration restoration_;
+    std::vector<double> volume_, field2_, count_;  // per component: a . s, |s|^2, vertices
+    double total_ = 0;                             // data vertices
+    std::vector<std::vector<double>> volume_part_, field_part_;  // per column, per component
     int rows_ = 0;
     bool exact_ = false;
     std::vector<int> bucket_;  // per vertex, -1 off the data
@@ -432,6 +508,7 @@ private:
 
 struct Curves {
     std::vector<double> rss, trace;  // rss NaN where not evaluated
+    std::vector<double> gain;        // the restoration's factor on the filtered noise
     std::size_t first = 0;           // below: the filter keeps over 98 % (not evaluated)
     std::size_t reach = 0;           // [first, reach) converged since the last checkpoint
 };
@@ -461,8 +538,11 @@ Curves checkpoint(const Context& ctx, const Lanczos& u, const Lanczos& z, const 
     // sketch is evaluated only where the curve may still move.
     std::size_t from = now.first;
     while (from < last.reach && from < end && std::isfinite(last.rss[from])) ++from;
-    now.rss = sketch.rss(ctx, u, s.grid, from, end);
-    for (std::size_t g = now.first; g < from; ++g) now.rss[g] = last.rss[g];
+    now.rss = sketch.rss(ctx, u, s.grid, from, end, &now.gain);
+    for (std::size_t g = now.first; g < from; ++g) {
+        now.rss[g] = last.rss[g];
+        now.gain[g] = last.gain[g];
+    }
     now.reach = now.first;
     for (std::size_t g = now.first; g < end; ++g) {
         if (g < from) {
@@ -512,7 +592,7 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Sketch& sketch, const Positi
         if (now.reach == now.first) continue;
         std::vector<double> risk;
         for (std::size_t g = now.first; g < now.reach; ++g)
-            risk.push_back(now.rss[g] + 2 * sigma * sigma * now.trace[g]);
+            risk.push_back(now.rss[g] + 2 * sigma * sigma * now.gain[g] * now.trace[g]);
         const std::size_t best = now.first + argmin(risk);
         s.minimizer = s.grid[best];
         s.converged_to = s.grid[now.reach - 1];
@@ -549,6 +629,37 @@ void choose(StrengthEstimate& e) {
 }
 
 }  // namespace
+
+// The restoration's fields (see Sketch::Restoration) for the components fair() restores.
+Sketch::Restoration restoration(const StrengthProblem& p, const Positions& normals) {
+    Sketch::Restoration r;
+    const int n = p.data_vertices;
+    r.component.assign(n, -1);
+    r.field.assign(n, 0.0);
+    r.area.assign(n, 0.0);
+    if (p.restored.empty()) return r;
+    for (const Triangle& t : p.mesh->faces()) {
+        const Vec3 a = row(*p.x, t[0]);
+        const double area = 0.5 * (row(*p.x, t[1]) - a).cross(row(*p.x, t[2]) - a).norm();
+        for (int k = 0; k < 3; ++k) r.area[t[k]] += area / 3;
+    }
+    std::vector<Eigen::RowVector3d> centroid(p.offset.size(), Eigen::RowVector3d::Zero());
+    std::vector<double> weight(p.offset.size(), 0.0);
+    for (int i = 0; i < n; ++i) {
+        const int k = p.restored[i];
+        if (k < 0) continue;
+        centroid[k] += r.area[i] * p.x->row(i);
+        weight[k] += r.area[i];
+    }
+    for (int i = 0; i < n; ++i) {
+        const int k = p.restored[i];
+        if (k < 0 || !(*p.free)[i] || !(weight[k] > 0)) continue;
+        r.component[i] = k;
+        r.field[i] = p.offset[k] ? 1.0 : normals.row(i).dot(p.x->row(i) - centroid[k] / weight[k]);
+    }
+    r.components = static_cast<int>(p.offset.size());
+    return r;
+}
 
 // Umbrella passes (half steps) smoothing the copy the normals are taken from.
 constexpr int kSmoothingPasses = 4;
@@ -587,7 +698,7 @@ StrengthEstimate estimate_strength(const StrengthProblem& p) {
 
     Lanczos u, z;
     start(ctx, u, z, count);
-    Sketch sketch(ctx, static_cast<int>(count));
+    Sketch sketch(ctx, static_cast<int>(count), restoration(p, normals));
     const Search found = search(ctx, u, z, sketch, normals, count, e.noise_level);
     e.lanczos_steps = static_cast<int>(
         std::max({u.alpha[0].size(), u.alpha[1].size(), u.alpha[2].size()}));
@@ -595,8 +706,10 @@ StrengthEstimate estimate_strength(const StrengthProblem& p) {
     const double hi = std::min(found.converged_to, 2.5 * found.minimizer);
     const double lo = std::min(found.minimizer / 2.5, hi / 2);
     for (int g = 0; g < kGrid; ++g) e.grid.push_back(lo * std::pow(hi / lo, g / (kGrid - 1.0)));
-    e.rss = sketch.rss(ctx, u, e.grid, 0, e.grid.size());
+    std::vector<double> gain;
+    e.rss = sketch.rss(ctx, u, e.grid, 0, e.grid.size(), &gain);
     e.trace = traces(ctx, z, count, e.grid);
+    for (std::size_t g = 0; g < e.grid.size(); ++g) e.trace[g] *= gain[g];
     choose(e);
     return e;
 }

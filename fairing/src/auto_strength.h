@@ -25,7 +25,9 @@
 //   directions: its normal component), and normals taken as fixed,
 //     E sum_i (n_i . (x'_i - f_i))^2 = sum_i (n_i . r_i)^2 + 2 sigma^2 tr H - N sigma^2,
 //   so the chosen lambda minimizes RSS_n(lambda) + 2 sigma^2 tr H(lambda). Tangential sliding
-//   (the umbrella evens out triangles) is no error and does not count.
+//   (the umbrella evens out triangles) is no error and does not count, and neither does the
+//   part of the normal residual that the volume restoration puts back (a rescaling, or a normal
+//   offset, per closed component: a shrinking sphere under curvature flow is no error).
 // - sigma is estimated robustly from the data (Donoho & Johnstone's 1.4826 x median absolute
 //   deviation, 1994) of the normal component of the uniform bi-Laplacian at every interior
 //   vertex, each divided by the exact norm of its own stencil; on a smooth surface the
@@ -66,6 +68,11 @@ struct StrengthProblem {
     bool explicit_integration = false;
     double max_time_step = 0;  // explicit: the largest time step allowed; else unused
     int threads = 1;
+    // Volume restoration after each step: per data vertex the restored component's index (-1:
+    // none), and per such component 1 when it is restored by a normal offset (it has fixed
+    // vertices), 0 when rescaled. Empty: nothing restored.
+    std::vector<int> restored;
+    std::vector<char> offset;
     std::function<void(double)> progress;  // fraction of the estimate done, in [0, 1]
 };
 
