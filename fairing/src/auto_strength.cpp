@@ -10,8 +10,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
 #include <limits>
 
 namespace fairing {
@@ -147,32 +145,11 @@ double estimate_noise(const SparseOperator& op, const HalfEdgeMesh& mesh, const 
 
 namespace {
 
-// The filter of `steps` steps of tau = lambda / steps, as functions of an eigenvalue g of G.
+// The filter of `steps` steps of lambda each (fair() gives every step the whole time step).
 struct Filter {
     double lambda = 0;
     int steps = 1;
     bool explicit_steps = false;
-
-    // log of the per-mode gain of one step, times steps: the whole filter is exp(this).
-    double log_gain(double g) const {
-        const double t = lambda / steps * g;
-        return explicit_steps ? steps * std::log(std::abs(1 - t)) : -steps * std::log1p(t);
-    }
-    // h(g): how much of a mode is kept.
-    double keep(double g) const {
-        g = std::max(g, 0.0);
-        if (explicit_steps) return std::pow(1 - lambda / steps * g, steps);
-        return std::exp(log_gain(g));
-    }
-    // phi(g) = (1 - h(g)) / g: the displacement per unit of u; lambda at g = 0.
-    double move(double g) const {
-        g = std::max(g, 0.0);
-        const double t = lambda / steps * g;
-        if (t < 1e-300) return lambda;
-        if (explicit_steps && t >= 0.5) return (1 - keep(g)) / g;
-        const double l = explicit_steps ? steps * std::log1p(-t) : -steps * std::log1p(t);
-        return -std::expm1(l) / g;
-    }
 };
 
 // Three independent Lanczos processes on G (one per column), in the coordinates q = D^-1/2 v,
@@ -254,62 +231,70 @@ void advance(Context& ctx, Lanczos& l, int j, bool measure) {
     l.previous.swap(l.current);
 }
 
-// Eigenvalues and eigenvectors of T_k.
-struct Ritz {
-    Eigen::VectorXd theta;
-    Eigen::MatrixXd vectors;
-};
-
-Ritz ritz(const std::vector<double>& alpha, const std::vector<double>& beta, int k) {
-    Ritz r;
-    if (k == 0) return r;
-    Eigen::VectorXd diagonal = Eigen::Map<const Eigen::VectorXd>(alpha.data(), k);
-    Eigen::VectorXd sub = k > 1 ? Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(beta.data(), k - 1))
-                                : Eigen::VectorXd(0);
-    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver;
-    solver.computeFromTridiagonal(diagonal, sub, Eigen::ComputeEigenvectors);
-    r.theta = solver.eigenvalues();
-    r.vectors = solver.eigenvectors();
-    return r;
-}
-
 int size_of(const Lanczos& l, int c) {
     return std::min(static_cast<int>(l.alpha[c].size()), static_cast<int>(l.beta[c].size()) + 1);
 }
 
-// Quadrature sum_j (Q_0j)^2 fn(theta_j) over the Ritz pairs.
-template <class Fn>
-double quadrature(const Ritz& r, Fn fn) {
-    double s = 0;
-    for (int j = 0; j < r.theta.size(); ++j) s += r.vectors(0, j) * r.vectors(0, j) * fn(r.theta(j));
-    return s;
+// The filter applied to e1 through the Lanczos tridiagonal matrix T_k: w_j = (I + lambda T)^-1
+// w_{j-1} (explicit: (I - lambda T) w_{j-1}), w_0 = e1, by the Thomas algorithm (I + lambda T
+// is symmetric positive definite). Returns the displacement coefficients
+// phi(T) e1 = lambda sum w_j (j = 1..s; explicit j = 0..s-1) and sets kept = e1' w_s, the
+// Gauss quadrature of e1' h(T) e1 (Golub & Meurant). O(steps k) per lambda, no eigenvectors.
+Eigen::VectorXd filtered(const Lanczos& l, int c, const Filter& f, double& kept) {
+    const int k = size_of(l, c);
+    Eigen::VectorXd w = Eigen::VectorXd::Zero(k), sum = Eigen::VectorXd::Zero(k), next(k);
+    kept = 0;
+    if (k == 0) return sum;
+    w(0) = 1;
+    const std::vector<double>& a = l.alpha[c];
+    const std::vector<double>& b = l.beta[c];
+    std::vector<double> pivot(k), upper(k);
+    if (!f.explicit_steps) {  // LDL' of I + lambda T, once
+        for (int i = 0; i < k; ++i) {
+            const double off = i > 0 ? f.lambda * b[i - 1] : 0.0;
+            pivot[i] = 1 + f.lambda * a[i] - (i > 0 ? off * upper[i - 1] : 0.0);
+            pivot[i] = std::max(pivot[i], 1e-300);
+            upper[i] = i + 1 < k ? f.lambda * b[i] / pivot[i] : 0.0;
+        }
+    }
+    for (int step = 0; step < f.steps; ++step) {
+        if (f.explicit_steps) {
+            sum += w;
+            for (int i = 0; i < k; ++i) {
+                double t = a[i] * w(i);
+                if (i > 0) t += b[i - 1] * w(i - 1);
+                if (i + 1 < k) t += b[i] * w(i + 1);
+                next(i) = w(i) - f.lambda * t;
+            }
+            w.swap(next);
+        } else {
+            for (int i = 0; i < k; ++i)  // forward: L z = w
+                w(i) = (w(i) - (i > 0 ? f.lambda * b[i - 1] * w(i - 1) : 0.0)) / pivot[i];
+            for (int i = k - 2; i >= 0; --i) w(i) -= upper[i] * w(i + 1);  // back: L' x = z
+            sum += w;
+        }
+    }
+    kept = w(0);
+    return f.lambda * sum;
 }
 
-// tr H(lambda) over the data rows for every lambda of the grid, by Lanczos quadrature on the
-// probes (each column one probe).
+// tr H(lambda) over the data rows for every lambda of the grid (each probe column's quadrature,
+// averaged).
 std::vector<double> traces(const Context& ctx, const Lanczos& z, double count,
                            const std::vector<double>& grid) {
     std::vector<double> out(grid.size(), 0.0);
     int probes = 0;
-    std::array<Ritz, 3> rz;
-    for (int c = 0; c < 3; ++c) {
-        rz[c] = ritz(z.alpha[c], z.beta[c], size_of(z, c));
-        probes += rz[c].theta.size() > 0;
-    }
+    for (int c = 0; c < 3; ++c) probes += size_of(z, c) > 0;
     for (std::size_t g = 0; g < grid.size(); ++g) {
         const Filter filter{grid[g], ctx.p.steps, ctx.p.explicit_integration};
-        for (int c = 0; c < 3; ++c)
-            if (rz[c].theta.size() > 0)
-                out[g] += count / probes * quadrature(rz[c], [&](double t) { return filter.keep(t); });
+        for (int c = 0; c < 3; ++c) {
+            if (size_of(z, c) == 0) continue;
+            double kept = 0;
+            filtered(z, c, filter, kept);
+            out[g] += count / probes * kept;
+        }
     }
     return out;
-}
-
-// Coefficients of r_c(lambda) on the Lanczos basis: |u_c| Q phi(Theta) Q^T e1.
-Eigen::VectorXd displacement(const Ritz& r, double start_norm, const Filter& filter) {
-    Eigen::VectorXd phi(r.theta.size());
-    for (int j = 0; j < r.theta.size(); ++j) phi(j) = filter.move(r.theta(j)) * r.vectors(0, j);
-    return start_norm * (r.vectors * phi);
 }
 
 std::uint64_t mix(std::uint64_t v) {  // splitmix64: probe signs independent of thread count
@@ -366,68 +351,164 @@ int argmin(const std::vector<double>& v) {
 }
 
 // Relative change of the curves between two checkpoints below which a point counts as converged.
-constexpr double kConverged = 5e-3;
+constexpr double kConverged = 2e-2;
 // The Lanczos process runs until its curves are converged up to this factor above the risk's
 // minimizer (and the minimizer has settled).
-constexpr double kMargin = 2;
+constexpr double kMargin = 1.5;
 constexpr int kMaxSteps = 400;
 // Rows of the sketch of the normal components (exact below this many data vertices).
-constexpr int kSketch = 4096;
+constexpr int kSketch = 8192;
 // Second pass: points of the final lambda grid.
 constexpr int kGrid = 16;
 
 // A sketch of the normal components n_i . r_i: CountSketch (Charikar, Chen & Farach-Colton
 // 2002) of every basis vector's normal part, so that |sketch of r(lambda)|^2 estimates
-// RSS_n(lambda) to about sqrt(2 / rows) at every checkpoint without keeping the basis. With no
-// more data vertices than rows it is exact (one row per vertex).
-struct Sketch {
-    int rows = 0;
-    bool exact = false;
-    std::vector<int> bucket;     // per vertex, -1 off the data
-    std::vector<float> sign;
-    std::array<std::vector<std::vector<float>>, 3> columns;  // [c][j]: rows floats
+// RSS_n(lambda) to about sqrt(2 / rows) without keeping the basis (the error is common to all
+// lambda: the same buckets serve every point of the curve). With no more data vertices than
+// rows it is exact (one row per vertex).
+class Sketch {
+public:
+    // The volume restoration after each step (sections 3.1-3.2) undoes the part of the normal
+    // residual along one field per restored component: s_i = n_i . (x_i - centroid) for a
+    // rescaling, 1 on the free vertices for a normal offset. It picks the multiple gamma that
+    // restores the volume, gamma = sum a_i n_i.r_i / sum a_i s_i (a_i: vertex areas), so the
+    // residual the user sees is n.r - gamma s: two linear functionals of r per component, kept
+    // exactly beside the sketch.
+    struct Restoration {
+        std::vector<int> component;  // per data vertex, -1: not restored
+        std::vector<double> field, area;
+        int components = 0;
+    };
 
-    Sketch() = default;
-    Sketch(const Context& ctx, int data_count) {
-        exact = data_count <= kSketch;
-        rows = exact ? data_count : kSketch;
-        bucket.assign(ctx.n, -1);
-        sign.assign(ctx.n, 1.0f);
+    Sketch(const Context& ctx, int data_count, Restoration restoration)
+        : restoration_(std::move(restoration)) {
+        const int nc = restoration_.components;
+        volume_.assign(nc, 0.0);
+        field2_.assign(nc, 0.0);
+        count_.assign(nc, 0.0);
+        for (std::size_t i = 0; i < restoration_.component.size(); ++i) {
+            const int k = restoration_.component[i];
+            if (k < 0) continue;
+            volume_[k] += restoration_.area[i] * restoration_.field[i];
+            field2_[k] += restoration_.field[i] * restoration_.field[i];
+            count_[k] += 1;
+        }
+        total_ = data_count;
+        exact_ = data_count <= kSketch;
+        rows_ = exact_ ? data_count : kSketch;
+        bucket_.assign(ctx.n, -1);
+        sign_.assign(ctx.n, 1.0f);
         int next = 0;
         for (int i = 0; i < ctx.n; ++i) {
             if (!ctx.data[i]) continue;
             const std::uint64_t h = mix(static_cast<std::uint64_t>(i) + 0x5bd1e995ull);
-            bucket[i] = exact ? next++ : static_cast<int>(h % static_cast<std::uint64_t>(rows));
-            if (!exact) sign[i] = (h >> 40) & 1 ? 1.0f : -1.0f;
+            bucket_[i] = exact_ ? next++ : static_cast<int>(h % static_cast<std::uint64_t>(rows_));
+            if (!exact_) sign_[i] = (h >> 40) & 1 ? 1.0f : -1.0f;
         }
     }
+    bool exact() const { return exact_; }
+    // Adds the current basis vector of every active column.
     void add(const Lanczos& u, const Positions& normals) {
         for (int c = 0; c < 3; ++c) {
             if (!u.active[c]) continue;
-            std::vector<float> col(rows, 0.0f);
-            for (std::size_t i = 0; i < bucket.size(); ++i)
-                if (bucket[i] >= 0)
-                    col[bucket[i]] += sign[i] * static_cast<float>(normals(i, c) * u.current(i, c));
-            columns[c].push_back(std::move(col));
+            if (used_ == columns_.cols())
+                columns_.conservativeResize(rows_, std::max<Eigen::Index>(24, 2 * used_));
+            auto col = columns_.col(used_);
+            col.setZero();
+            for (std::size_t i = 0; i < bucket_.size(); ++i)
+                if (bucket_[i] >= 0)
+                    col(bucket_[i]) += sign_[i] * static_cast<float>(normals(i, c) * u.current(i, c));
+            std::vector<double> by_volume(restoration_.components, 0.0), by_field = by_volume;
+            for (std::size_t i = 0; i < restoration_.component.size(); ++i) {
+                const int k = restoration_.component[i];
+                if (k < 0) continue;
+                const double v = normals(i, c) * u.current(i, c);
+                by_volume[k] += restoration_.area[i] * v;
+                by_field[k] += restoration_.field[i] * v;
+            }
+            volume_part_.push_back(std::move(by_volume));
+            field_part_.push_back(std::move(by_field));
+            index_[c].push_back(static_cast<int>(used_++));
         }
     }
-    // |sum_c S_c y_c|^2
-    double rss(const std::array<Eigen::VectorXd, 3>& y) const {
-        std::vector<double> v(rows, 0.0);
-        for (int c = 0; c < 3; ++c)
-            for (int j = 0; j < y[c].size(); ++j) {
-                const float* col = columns[c][j].data();
-                const double a = y[c](j);
-                for (int r = 0; r < rows; ++r) v[r] += a * col[r];
+    // |sum_c S_c y_c(lambda)|^2 for every lambda of `grid` from `first` to `last` (exclusive),
+    // with y from the Lanczos tridiagonal matrices; NaN elsewhere.
+    std::vector<double> rss(const Context& ctx, const Lanczos& u, const std::vector<double>& grid,
+                            std::size_t first, std::size_t last,
+                            std::vector<double>* gains = nullptr) const {
+        std::vector<double> out(grid.size(), std::numeric_limits<double>::quiet_NaN());
+        if (gains) gains->assign(grid.size(), 1.0);
+        if (last <= first) return out;
+        Eigen::MatrixXf y = Eigen::MatrixXf::Zero(used_, static_cast<Eigen::Index>(last - first));
+        for (std::size_t g = first; g < last; ++g) {
+            const Filter filter{grid[g], ctx.p.steps, ctx.p.explicit_integration};
+            for (int c = 0; c < 3; ++c) {
+                double kept = 0;
+                const Eigen::VectorXd coef = filtered(u, c, filter, kept);
+                const int k = std::min(static_cast<int>(coef.size()), static_cast<int>(index_[c].size()));
+                for (int j = 0; j < k; ++j)
+                    y(index_[c][j], static_cast<Eigen::Index>(g - first)) =
+                        static_cast<float>(u.start_norm[c] * coef(j));
             }
-        double s = 0;
-        for (double a : v) s += a * a;
-        return s;
+        }
+        const Eigen::MatrixXf v = columns_.leftCols(used_) * y;  // one product for all lambda
+        for (std::size_t g = first; g < last; ++g) {
+            const Eigen::Index col = static_cast<Eigen::Index>(g - first);
+            double gain = 1;
+            out[g] = restored(y.col(col), v.col(col).cast<double>().squaredNorm(), gain);
+            if (gains) (*gains)[g] = gain;
+        }
+        return out;
     }
+
+private:
+    // RSS_n after the restoration, and in `gain` the mean factor it multiplies the filtered
+    // noise by. Per component, with V = (a . s) / 3 (the volume seen from the centroid) and the
+    // step's volume loss a . n.r, beta = (V / (V - a . n.r))^(1/3) and the residual is
+    // (1 - beta) s + beta n.r: |.|^2 = (1 - beta)^2 |s|^2 + 2 beta (1 - beta) s . n.r + beta^2
+    // |n.r|^2 over the component. The sketch gives |n.r|^2 for the whole mesh; the components'
+    // share of it is not known separately, so the beta^2 applies to the whole RSS_n when
+    // everything is restored (one closed component, the common case) and to none otherwise.
+    double restored(const Eigen::Ref<const Eigen::VectorXf>& y, double rss_n, double& gain) const {
+        gain = 1;
+        if (restoration_.components == 0) return rss_n;
+        double extra = 0, weighted_beta = 0, covered = 0;
+        for (int k = 0; k < restoration_.components; ++k) {
+            if (!(volume_[k] > 0)) continue;
+            double by_volume = 0, by_field = 0;
+            for (Eigen::Index j = 0; j < used_; ++j) {
+                by_volume += volume_part_[j][k] * y(j);
+                by_field += field_part_[j][k] * y(j);
+            }
+            const double v = volume_[k] / 3;
+            const double left = std::max(v - by_volume, 1e-3 * v);
+            const double beta = std::cbrt(v / left);
+            extra += (1 - beta) * (1 - beta) * field2_[k] + 2 * beta * (1 - beta) * by_field;
+            weighted_beta += beta * count_[k];
+            covered += count_[k];
+        }
+        if (covered == 0) return rss_n;
+        gain = (weighted_beta + (total_ - covered)) / total_;
+        const double beta_all = covered == total_ ? weighted_beta / covered : 1.0;
+        return extra + beta_all * beta_all * rss_n;
+    }
+
+    Restoration restoration_;
+    std::vector<double> volume_, field2_, count_;  // per component: a . s, |s|^2, vertices
+    double total_ = 0;                             // data vertices
+    std::vector<std::vector<double>> volume_part_, field_part_;  // per column, per component
+    int rows_ = 0;
+    bool exact_ = false;
+    std::vector<int> bucket_;  // per vertex, -1 off the data
+    std::vector<float> sign_;
+    Eigen::MatrixXf columns_;  // rows_ x capacity
+    Eigen::Index used_ = 0;
+    std::array<std::vector<int>, 3> index_;  // [c][j]: column of basis vector j of process c
 };
 
 struct Curves {
     std::vector<double> rss, trace;  // rss NaN where not evaluated
+    std::vector<double> gain;        // the restoration's factor on the filtered noise
     std::size_t first = 0;           // below: the filter keeps over 98 % (not evaluated)
     std::size_t reach = 0;           // [first, reach) converged since the last checkpoint
 };
@@ -448,23 +529,33 @@ Curves checkpoint(const Context& ctx, const Lanczos& u, const Lanczos& z, const 
                   const Search& s, const Curves& last) {
     Curves now;
     now.trace = traces(ctx, z, s.count, s.grid);
-    now.rss.assign(s.grid.size(), std::numeric_limits<double>::quiet_NaN());
     while (now.first + 1 < s.grid.size() && now.trace[now.first + 1] > 0.98 * s.count)
         ++now.first;
-    std::array<Ritz, 3> ru;
-    for (int c = 0; c < 3; ++c) ru[c] = ritz(u.alpha[c], u.beta[c], size_of(u, c));
+    // Evaluate up to 2 kAhead points past the last checkpoint's converged ones (those up to
+    // kAhead past were evaluated then too, and can be judged now).
+    const std::size_t end = std::min(s.grid.size(), std::max(last.reach, now.first) + 2 * kAhead);
+    // Points that had converged keep their values (they move by less than kConverged): the
+    // sketch is evaluated only where the curve may still move.
+    std::size_t from = now.first;
+    while (from < last.reach && from < end && std::isfinite(last.rss[from])) ++from;
+    now.rss = sketch.rss(ctx, u, s.grid, from, end, &now.gain);
+    for (std::size_t g = now.first; g < from; ++g) {
+        now.rss[g] = last.rss[g];
+        now.gain[g] = last.gain[g];
+    }
     now.reach = now.first;
-    bool settled = true;
-    for (std::size_t g = now.first; g < s.grid.size() && g < now.reach + kAhead; ++g) {
-        const Filter filter{s.grid[g], ctx.p.steps, ctx.p.explicit_integration};
-        std::array<Eigen::VectorXd, 3> y;
-        for (int c = 0; c < 3; ++c) y[c] = displacement(ru[c], u.start_norm[c], filter);
-        now.rss[g] = sketch.rss(y);
-        settled = settled && g < last.rss.size() && std::isfinite(last.rss[g]) &&
-                  std::abs(now.rss[g] - last.rss[g]) <= kConverged * now.rss[g] &&
-                  std::abs(now.trace[g] - last.trace[g]) <=
-                      kConverged * std::max(s.count - now.trace[g], 1e-3 * s.count);
-        if (settled) now.reach = g + 1;
+    for (std::size_t g = now.first; g < end; ++g) {
+        if (g < from) {
+            now.reach = g + 1;
+            continue;
+        }
+        const bool settled =
+            g < last.rss.size() && std::isfinite(last.rss[g]) &&
+            std::abs(now.rss[g] - last.rss[g]) <= kConverged * now.rss[g] &&
+            std::abs(now.trace[g] - last.trace[g]) <=
+                kConverged * std::max(s.count - now.trace[g], 1e-3 * s.count);
+        if (!settled) break;
+        now.reach = g + 1;
     }
     return now;
 }
@@ -475,7 +566,7 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Sketch& sketch, const Positi
               double count, double sigma) {
     Search s;
     s.count = count;
-    const double top = ctx.p.explicit_integration ? 0.999 * ctx.p.max_time_step : 1e7;
+    const double top = ctx.p.explicit_integration ? std::min(ctx.p.max_time_step, 1e7) : 1e7;
     for (double l = 1e-4; l < top; l *= std::pow(10.0, 0.1)) s.grid.push_back(l);
     if (ctx.p.explicit_integration) s.grid.push_back(top);
     Curves last;
@@ -501,7 +592,7 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Sketch& sketch, const Positi
         if (now.reach == now.first) continue;
         std::vector<double> risk;
         for (std::size_t g = now.first; g < now.reach; ++g)
-            risk.push_back(now.rss[g] + 2 * sigma * sigma * now.trace[g]);
+            risk.push_back(now.rss[g] + 2 * sigma * sigma * now.gain[g] * now.trace[g]);
         const std::size_t best = now.first + argmin(risk);
         s.minimizer = s.grid[best];
         s.converged_to = s.grid[now.reach - 1];
@@ -516,69 +607,6 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Sketch& sketch, const Positi
         s.minimizer = s.grid.front();
     }
     return s;
-}
-
-// Regenerates the positions' basis and accumulates, per data vertex and grid point, the normal
-// component of r(lambda); returns RSS_n per grid point.
-std::vector<double> second_pass(Context& ctx, Lanczos& u, const Positions& normals,
-                                const std::vector<double>& grid) {
-    const int m = static_cast<int>(grid.size());
-    // Coefficients of r_c(lambda) on the basis: |u_c| Q phi(Theta) Q^T e1.
-    std::array<Eigen::MatrixXd, 3> coef;
-    int k = 0;
-    for (int c = 0; c < 3; ++c) {
-        const int kc = size_of(u, c);
-        k = std::max(k, kc);
-        const Ritz r = ritz(u.alpha[c], u.beta[c], kc);
-        coef[c] = Eigen::MatrixXd::Zero(std::max(kc, 1), m);
-        for (int g = 0; g < m && kc > 0; ++g) {
-            const Filter filter{grid[g], ctx.p.steps, ctx.p.explicit_integration};
-            Eigen::VectorXd phi(kc);
-            for (int j = 0; j < kc; ++j) phi(j) = filter.move(r.theta(j)) * r.vectors(0, j);
-            coef[c].col(g) = u.start_norm[c] * (r.vectors * phi);
-        }
-    }
-    std::vector<float> acc(static_cast<std::size_t>(ctx.p.data_vertices) * m, 0.0f);
-    Lanczos regen;
-    regen.alpha = u.alpha;
-    regen.beta = u.beta;
-    regen.start_norm = u.start_norm;
-    double unused = 0;
-    Lanczos probes;  // start() builds both; the probes are dropped at once
-    start(ctx, regen, probes, unused);
-    probes = Lanczos();
-    std::array<int, 3> sizes{{size_of(u, 0), size_of(u, 1), size_of(u, 2)}};
-    const int data = ctx.p.data_vertices;
-    for (int j = 0; j < k; ++j) {
-        // Accumulate basis vector j (held in regen.current).
-        const double* q = regen.current.data();
-        const int threads = ctx.p.op->threads;
-        (void)threads;
-        std::array<const double*, 3> cj{};
-        for (int c = 0; c < 3; ++c) cj[c] = j < sizes[c] ? coef[c].data() + static_cast<std::ptrdiff_t>(j) : nullptr;
-        const std::array<std::ptrdiff_t, 3> stride{{coef[0].rows(), coef[1].rows(), coef[2].rows()}};
-        FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1))
-        for (int i = 0; i < data; ++i) {
-            if (!ctx.data[i]) continue;
-            double a[3];
-            for (int c = 0; c < 3; ++c) a[c] = cj[c] ? normals(i, c) * q[3 * i + c] : 0.0;
-            float* s = acc.data() + static_cast<std::size_t>(i) * m;
-            for (int g = 0; g < m; ++g) {
-                double v = 0;
-                for (int c = 0; c < 3; ++c)
-                    if (cj[c]) v += a[c] * cj[c][g * stride[c]];
-                s[g] += static_cast<float>(v);
-            }
-        }
-        if (ctx.p.progress) ctx.p.progress(0.7 + 0.3 * (j + 1) / k);
-        if (j + 1 == k) break;
-        multiply(ctx, regen);
-        advance(ctx, regen, j, false);
-    }
-    std::vector<double> rss(m, 0.0);
-    for (int i = 0; i < data; ++i)
-        for (int g = 0; g < m; ++g) rss[g] += static_cast<double>(acc[static_cast<std::size_t>(i) * m + g]) * acc[static_cast<std::size_t>(i) * m + g];
-    return rss;
 }
 
 // The minimizer of SURE on the grid, refined by a parabola in log(lambda) through its
@@ -598,19 +626,40 @@ void choose(StrengthEstimate& e) {
     }
     e.time_step = std::exp(log_lambda);
     e.trace_fraction = e.trace[best] / e.data_count;
-    if (std::getenv("FAIRING_AUTO_DEBUG")) {
-        std::fprintf(stderr, "auto: sigma %g N %g lanczos %d chosen %g\n", e.noise_level,
-                     e.data_count, e.lanczos_steps, e.time_step);
-        for (int g = 0; g < m; ++g) {
-            const double rest = e.data_count - e.trace[g];
-            std::fprintf(stderr, "  lambda %10.4g rss %10.4g tr %10.4g sure %10.4g gcv %10.4g\n",
-                         e.grid[g], e.rss[g], e.trace[g], risk[g],
-                         e.rss[g] / (rest * rest) * e.data_count);
-        }
-    }
 }
 
 }  // namespace
+
+// The restoration's fields (see Sketch::Restoration) for the components fair() restores.
+Sketch::Restoration restoration(const StrengthProblem& p, const Positions& normals) {
+    Sketch::Restoration r;
+    const int n = p.data_vertices;
+    r.component.assign(n, -1);
+    r.field.assign(n, 0.0);
+    r.area.assign(n, 0.0);
+    if (p.restored.empty()) return r;
+    for (const Triangle& t : p.mesh->faces()) {
+        const Vec3 a = row(*p.x, t[0]);
+        const double area = 0.5 * (row(*p.x, t[1]) - a).cross(row(*p.x, t[2]) - a).norm();
+        for (int k = 0; k < 3; ++k) r.area[t[k]] += area / 3;
+    }
+    std::vector<Eigen::RowVector3d> centroid(p.offset.size(), Eigen::RowVector3d::Zero());
+    std::vector<double> weight(p.offset.size(), 0.0);
+    for (int i = 0; i < n; ++i) {
+        const int k = p.restored[i];
+        if (k < 0) continue;
+        centroid[k] += r.area[i] * p.x->row(i);
+        weight[k] += r.area[i];
+    }
+    for (int i = 0; i < n; ++i) {
+        const int k = p.restored[i];
+        if (k < 0 || !(*p.free)[i] || !(weight[k] > 0)) continue;
+        r.component[i] = k;
+        r.field[i] = p.offset[k] ? 1.0 : normals.row(i).dot(p.x->row(i) - centroid[k] / weight[k]);
+    }
+    r.components = static_cast<int>(p.offset.size());
+    return r;
+}
 
 // Umbrella passes (half steps) smoothing the copy the normals are taken from.
 constexpr int kSmoothingPasses = 4;
@@ -649,7 +698,7 @@ StrengthEstimate estimate_strength(const StrengthProblem& p) {
 
     Lanczos u, z;
     start(ctx, u, z, count);
-    Sketch sketch(ctx, static_cast<int>(count));
+    Sketch sketch(ctx, static_cast<int>(count), restoration(p, normals));
     const Search found = search(ctx, u, z, sketch, normals, count, e.noise_level);
     e.lanczos_steps = static_cast<int>(
         std::max({u.alpha[0].size(), u.alpha[1].size(), u.alpha[2].size()}));
@@ -657,21 +706,10 @@ StrengthEstimate estimate_strength(const StrengthProblem& p) {
     const double hi = std::min(found.converged_to, 2.5 * found.minimizer);
     const double lo = std::min(found.minimizer / 2.5, hi / 2);
     for (int g = 0; g < kGrid; ++g) e.grid.push_back(lo * std::pow(hi / lo, g / (kGrid - 1.0)));
-    if (sketch.exact) {
-        std::array<Ritz, 3> ru;
-        for (int c = 0; c < 3; ++c) ru[c] = ritz(u.alpha[c], u.beta[c], size_of(u, c));
-        for (double l : e.grid) {
-            const Filter filter{l, p.steps, p.explicit_integration};
-            std::array<Eigen::VectorXd, 3> y;
-            for (int c = 0; c < 3; ++c) y[c] = displacement(ru[c], u.start_norm[c], filter);
-            e.rss.push_back(sketch.rss(y));
-        }
-    } else {
-        sketch = Sketch();
-        z.previous = z.current = z.product = Positions();  // its tridiagonals suffice now
-        e.rss = second_pass(ctx, u, normals, e.grid);
-    }
+    std::vector<double> gain;
+    e.rss = sketch.rss(ctx, u, e.grid, 0, e.grid.size(), &gain);
     e.trace = traces(ctx, z, count, e.grid);
+    for (std::size_t g = 0; g < e.grid.size(); ++g) e.trace[g] *= gain[g];
     choose(e);
     return e;
 }

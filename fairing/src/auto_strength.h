@@ -6,26 +6,38 @@
 //   With D = M/w and C = -K (order 1) or K P M^-1 K (order 2) on the free rows (solver.h), the
 //   implicit system is D + lambda C = D^1/2 (I + lambda G) D^1/2, G = D^-1/2 C D^-1/2 symmetric
 //   positive semi-definite. With u = D^-1/2 (C x) (fixed-vertex terms included: C acts on every
-//   position), s implicit steps of tau = lambda/s move the free vertices by exactly
-//     r(lambda) = D^-1/2 phi(G) u,   phi(g) = (1 - (1 + tau g)^-s) / g,
-//   and filter the noise by H = D^-1/2 (I + tau G)^-s D^1/2 (explicit: (1 - tau g)^s, and
-//   phi(g) = (1 - (1 - tau g)^s) / g).
+//   position), s implicit steps of lambda each (as fair() takes them) move the free vertices by
+//   exactly (operator frozen)
+//     r(lambda) = D^-1/2 phi(G) u,   phi(g) = (1 - (1 + lambda g)^-s) / g,
+//   and filter the noise by H = D^-1/2 (I + lambda G)^-s D^1/2 (explicit: (1 - lambda g)^s, and
+//   phi(g) = (1 - (1 - lambda g)^s) / g).
 // - The Lanczos process on G started at u (Golub & Meurant, "Matrices, Moments and
 //   Quadrature", 1994/2010) gives r(lambda) ~ |u| D^-1/2 V_k phi(T_k) e1 for every lambda at
-//   once; stochastic Lanczos quadrature with Rademacher probes (Hutchinson 1990; Ubaru, Chen &
-//   Saad, SIAM J. Matrix Anal. Appl. 38(4), 2017) gives tr H(lambda) for every lambda. The basis
-//   is never stored: a second pass regenerates it from the tridiagonal coefficients and
-//   accumulates the normal components of r on a grid of lambda.
+//   once (phi(T_k) e1 by tridiagonal solves); stochastic Lanczos quadrature with three
+//   Rademacher probes (Hutchinson 1990; Ubaru, Chen & Saad, SIAM J. Matrix Anal. Appl. 38(4),
+//   2017) gives tr H(lambda) for every lambda. The basis V_k is never kept: only a CountSketch of
+//   its normal components (Charikar, Chen & Farach-Colton 2002; exact below 8192 vertices), from
+//   which the normal residual follows for any lambda. The process stops when the risk's
+//   minimizer has settled and the curves have converged (2 % between checkpoints) up to 1.5
+//   times past it. Cost: two products with the system per Lanczos step; as many steps as
+//   Jacobi-preconditioned CG would need at the chosen step to a loose tolerance.
 // - Risk (Stein 1981): with noise of standard deviation sigma along the normals n_i (in all
 //   directions: its normal component), and normals taken as fixed,
 //     E sum_i (n_i . (x'_i - f_i))^2 = sum_i (n_i . r_i)^2 + 2 sigma^2 tr H - N sigma^2,
 //   so the chosen lambda minimizes RSS_n(lambda) + 2 sigma^2 tr H(lambda). Tangential sliding
-//   (the umbrella evens out triangles) is no error and does not count.
+//   (the umbrella evens out triangles) is no error and does not count, and neither does the
+//   part of the normal residual that the volume restoration puts back (a rescaling, or a normal
+//   offset, per closed component: a shrinking sphere under curvature flow is no error).
 // - sigma is estimated robustly from the data (Donoho & Johnstone's 1.4826 x median absolute
 //   deviation, 1994) of the normal component of the uniform bi-Laplacian at every interior
 //   vertex, each divided by the exact norm of its own stencil; on a smooth surface the
 //   bi-Laplacian of the positions is of fourth order in the edge length, so curvature hardly
 //   inflates it.
+//
+// Limits (measured on CGAL demo scans, fandisk and elephant): the weights of eq. 11 and eq. 14 are computed on the noisy
+// mesh, so their filter depends on the noise; past ~0.4 edges of noise the linear risk estimate
+// misjudges them and chooses too weak a step. With a recomputed operator (steps > 1, not frozen)
+// the frozen-operator model is only approximate.
 //
 // Conventions: lambda is the dimensionless time step of Options::time_step (C is scaled by the
 // operator's length unit); rows at or past `data_vertices` (virtual vertices) move with the
@@ -52,10 +64,15 @@ struct StrengthProblem {
     int data_vertices = 0;
     double length_unit = 1;  // lambda_dt = lambda * length_unit
     int order = 1;
-    int steps = 1;
+    int steps = 1;  // each of lambda (fair() gives every step the whole time step)
     bool explicit_integration = false;
-    double max_time_step = 0;  // explicit: the stability bound (dimensionless); else unused
+    double max_time_step = 0;  // explicit: the largest time step allowed; else unused
     int threads = 1;
+    // Volume restoration after each step: per data vertex the restored component's index (-1:
+    // none), and per such component 1 when it is restored by a normal offset (it has fixed
+    // vertices), 0 when rescaled. Empty: nothing restored.
+    std::vector<int> restored;
+    std::vector<char> offset;
     std::function<void(double)> progress;  // fraction of the estimate done, in [0, 1]
 };
 
@@ -64,7 +81,8 @@ struct StrengthEstimate {
     double noise_level = 0;   // sigma, in the mesh's units
     int lanczos_steps = 0;
     double trace_fraction = 1;  // tr H / N at the chosen time step: the share of noise kept
-    // The risk curve (for studies and tests, not for users).
+    // The risk curve around the choice (for studies and tests, not for users): SURE is
+    // rss + 2 noise_level^2 trace.
     std::vector<double> grid, rss, trace;
     double data_count = 0;
 };

@@ -428,10 +428,20 @@ void Run::choose_time_step() {
     problem.order = options_.order;
     problem.steps = std::max(1, options_.steps);
     problem.explicit_integration = options_.integration == Integration::Explicit;
+    // Explicit: at most half the first step's stability bound. At the bound the highest mode
+    // flips sign undamped, and later steps on recomputed operators have lower bounds.
     if (problem.explicit_integration)
-        problem.max_time_step = explicit_bound(surface_, free, options_.order) / problem.length_unit;
+        problem.max_time_step =
+            0.5 * explicit_bound(surface_, free, options_.order) / problem.length_unit;
     // The estimate costs about as much as one solve: a third of the progress range.
     constexpr double kShare = 1.0 / 3;
+    const auto& components = he_.components();
+    problem.restored.assign(n_, -1);
+    for (std::size_t c = 0; c < components.size(); ++c) {
+        if (target_[c] == 0 || !result_.components[c].closed) continue;  // volume only
+        for (int v : components[c].vertices) problem.restored[v] = static_cast<int>(problem.offset.size());
+        problem.offset.push_back(result_.components[c].has_fixed ? 1 : 0);
+    }
     if (options_.progress) problem.progress = [this](double f) { report_progress(kShare * f); };
     const detail::StrengthEstimate e = detail::estimate_strength(problem);
     progress_offset_ = std::max(progress_, kShare);

@@ -172,11 +172,11 @@ struct Result {
     double lambda_dt = 0;           // absolute lambda*dt used per step
     double time_step = 0;           // the dimensionless time step used (chosen or given)
     bool automatic_time_step = false;  // chosen from the mesh (Options::time_step empty)
+    double mean_edge_length = 0;    // of the input, in its units (the time step's length unit)
     // Automatic strength only (0 otherwise): the estimated standard deviation of the noise
     // along the normals, in the mesh's units and in mean edge lengths.
     double noise_level = 0;
     double noise_level_edges = 0;
-    double mean_edge_length = 0;
     // Automatic strength only: tr H / N of the chosen filter H on the free vertices (its
     // effective degrees of freedom per vertex: 1 keeps everything, 0 smooths everything away),
     // the Lanczos steps spent and the seconds spent choosing (included in `seconds`).

@@ -1,0 +1,326 @@
+// Automatic strength (fairing.h, src/auto_strength.h): Options::time_step left empty chooses the
+// time step minimizing Stein's unbiased risk estimate of the error along the normals, from the
+// noisy mesh alone. What users rely on: the same relative result in any unit, more smoothing
+// for more noise, (almost) none without noise, an explicit value still used as is, curvature
+// flow still leaving flat patches and spheres alone, every option working.
+#include "meshes.h"
+
+#include "auto_strength.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using fairing::BoundaryMode;
+using fairing::Operator;
+using fairing::Options;
+using fairing::TriangleMesh;
+using meshes::Positions;
+using meshes::Vec3;
+
+namespace {
+
+// Unit icosphere (levels 3: 642 vertices, mean edge ~0.19) whose vertices are moved along the
+// radius (= the normal) by a uniform random amount of standard deviation `sigma_edges` mean edge
+// lengths (uniform on [-a, a] has standard deviation a / sqrt(3)).
+TriangleMesh noisy_sphere(double sigma_edges, int levels = 3, std::uint64_t seed = 3) {
+    const TriangleMesh clean = meshes::icosphere(levels);
+    const double h = meshes::mean_edge_length(clean.positions, clean.triangles);
+    return meshes::radial_noise(clean, sigma_edges * h * std::sqrt(3.0), seed);
+}
+
+// RMS distance of the vertices to the unit sphere about the origin.
+double sphere_error(const Positions& p) {
+    double s = 0;
+    for (int i = 0; i < p.rows(); ++i) s += std::pow(meshes::row(p, i).norm() - 1.0, 2);
+    return std::sqrt(s / p.rows());
+}
+
+Options automatic(Operator op, int order, int steps = 1) {
+    Options o;
+    o.op = op;
+    o.order = order;
+    o.steps = steps;
+    return o;
+}
+
+}  // namespace
+
+// The noise estimate (1.4826 x MAD of the normal bi-Laplacian over its stencil norm) recovers the
+// noise put in, within 25 %: the data have 642 vertices, so the median alone is uncertain by
+// ~1.25 / sqrt(642) = 5 %, and uniform noise is not Gaussian (its MAD / sigma is 1.5 / sqrt(3)
+// x 1.4826 = 1.28 for one sample, but the bi-Laplacian mixes ~19 of them, which is nearly
+// Gaussian).
+TEST(AutoStrength, EstimatesTheNoiseLevel) {
+    for (double sigma : {0.05, 0.1, 0.25}) {
+        const TriangleMesh m = noisy_sphere(sigma, 4);
+        const fairing::Result r = fairing::fair(m, {}, automatic(Operator::Umbrella, 2));
+        EXPECT_TRUE(r.automatic_time_step);
+        EXPECT_NEAR(r.noise_level_edges, sigma, 0.25 * sigma);
+        EXPECT_NEAR(r.noise_level, r.noise_level_edges * r.mean_edge_length,
+                    1e-12 * r.noise_level);
+    }
+}
+
+// Ellipsoid with semi-axes 1, 0.7, 0.5 (an icosphere of `levels` stretched; mean edge h ~0.07 at
+// levels 4), its vertices moved along the normal by uniform noise of standard deviation
+// `sigma_edges` edges. Curvature flow changes it (a sphere it would only shrink, which the volume
+// restoration undoes, so any strength is right there).
+const Vec3 kAxes(1.0, 0.7, 0.5);
+
+TriangleMesh noisy_ellipsoid(double sigma_edges, int levels = 4, std::uint64_t seed = 5) {
+    TriangleMesh m = meshes::icosphere(levels);
+    for (int i = 0; i < m.positions.rows(); ++i)
+        for (int k = 0; k < 3; ++k) m.positions(i, k) *= kAxes(k);
+    const double h = meshes::mean_edge_length(m.positions, m.triangles);
+    meshes::Rng rng(seed);
+    for (int i = 0; i < m.positions.rows(); ++i) {
+        const Vec3 p = meshes::row(m.positions, i);
+        const Vec3 normal = p.cwiseQuotient(kAxes.cwiseProduct(kAxes)).normalized();
+        meshes::set_row(m.positions, i, p + sigma_edges * h * std::sqrt(3.0) * rng.symmetric() * normal);
+    }
+    return m;
+}
+
+// RMS distance to the ellipsoid, to first order: (F - 1) / |grad F|, F = sum (x_k / a_k)^2.
+double ellipsoid_error(const Positions& p) {
+    double s = 0;
+    for (int i = 0; i < p.rows(); ++i) {
+        const Vec3 x = meshes::row(p, i);
+        const Vec3 q = x.cwiseQuotient(kAxes);
+        const Vec3 grad = 2 * x.cwiseQuotient(kAxes.cwiseProduct(kAxes));
+        s += std::pow((q.squaredNorm() - 1) / grad.norm(), 2);
+    }
+    return std::sqrt(s / p.rows());
+}
+
+// Stronger noise needs a stronger filter: the chosen time step grows with the noise for every
+// operator and order, and the result is closer to the ellipsoid than the input. Up to half an
+// edge for the umbrella, whose filter does not depend on the data; up to a quarter edge for
+// eq. 11 and eq. 14, whose weights are computed on the noisy mesh: past ~0.4 edges the noise
+// distorts them so much that the linear risk estimate no longer holds (auto_strength.h).
+TEST(AutoStrength, StrongerNoiseGivesLargerStep) {
+    for (Operator op : meshes::kOperators) {
+        const std::vector<double> levels = op == Operator::Umbrella
+                                               ? std::vector<double>{0.05, 0.15, 0.45}
+                                               : std::vector<double>{0.05, 0.12, 0.25};
+        for (int order : {1, 2}) {
+            SCOPED_TRACE(testing::Message() << fairing::to_string(op) << " order " << order);
+            double previous = 0;
+            for (double sigma : levels) {
+                const TriangleMesh m = noisy_ellipsoid(sigma);
+                const fairing::Result r = fairing::fair(m, {}, automatic(op, order));
+                EXPECT_GT(r.time_step, 1.2 * previous) << "noise " << sigma;
+                EXPECT_LT(ellipsoid_error(r.positions), 0.8 * ellipsoid_error(m.positions));
+                previous = r.time_step;
+            }
+        }
+    }
+}
+
+// Units: the estimate works on the dimensionless operator, so a mesh in micrometres and the same
+// mesh in kilometres get the same time step and the same result relative to their size. The
+// Lanczos process meets the same numbers up to rounding, so its stopping decisions agree; the
+// sketch of the normal residual is summed in single precision, whose rounding moves the refined
+// minimizer by ~1e-5 (relative), far below what changes a result.
+TEST(AutoStrength, SameRelativeResultAtEveryScale) {
+    const TriangleMesh m = meshes::translated(noisy_sphere(0.2), Vec3(0.3, -0.2, 0.1));
+    for (Operator op : meshes::kOperators) {
+        SCOPED_TRACE(fairing::to_string(op));
+        const fairing::Result ref = fairing::fair(m, {}, automatic(op, 2));
+        ASSERT_GT(ref.time_step, 0);
+        for (double s : {1e-3, 1e3}) {
+            const fairing::Result r = fairing::fair(meshes::scaled(m, s), {}, automatic(op, 2));
+            EXPECT_NEAR(r.time_step, ref.time_step, 1e-4 * ref.time_step) << s;
+            EXPECT_NEAR(r.noise_level_edges, ref.noise_level_edges, 1e-9) << s;
+            EXPECT_LT(meshes::max_row_distance(r.positions / s, ref.positions), 1e-6) << s;
+        }
+    }
+}
+
+// Without noise there is nothing to remove. On an exactly flat patch the normal bi-Laplacian is 0
+// everywhere, the estimated noise is 0 and no step is taken: the input comes back bit for bit.
+TEST(AutoStrength, NoNoiseOnAFlatPatchMeansNoSmoothing) {
+    const TriangleMesh m = meshes::irregular_plane(16);
+    for (Operator op : meshes::kOperators) {
+        const fairing::Result r = fairing::fair(m, {}, automatic(op, 2));
+        EXPECT_EQ(r.noise_level, 0.0);
+        EXPECT_EQ(r.time_step, 0.0);
+        EXPECT_EQ(r.steps, 0);
+        EXPECT_EQ(r.vertices_moved, 0);
+    }
+}
+
+// A clean curved mesh is not noise-free for the estimator: the bi-Laplacian of a sphere sampled
+// with valences 5 and 6 is not exactly normal-free of variation, so it reads a small "noise". The
+// filter chosen against it must be weak: it moves the vertices by less than 2 % of an edge
+// (RMS), where a quarter-edge noise makes it move them by about a quarter edge. Bound: the
+// estimated level itself stays below 0.02 edges on this sphere, and SURE never removes more
+// than the noise it believes in plus the signal it costs.
+TEST(AutoStrength, NoNoiseOnASphereMeansAlmostNoSmoothing) {
+    const TriangleMesh clean = meshes::icosphere(4);
+    const TriangleMesh noisy = noisy_sphere(0.25, 4);
+    const double h = meshes::mean_edge_length(clean.positions, clean.triangles);
+    for (Operator op : meshes::kOperators) {
+        SCOPED_TRACE(fairing::to_string(op));
+        const fairing::Result r = fairing::fair(clean, {}, automatic(op, 2));
+        EXPECT_LT(r.noise_level_edges, 0.02);
+        const double moved = std::sqrt((r.positions - clean.positions).rowwise().squaredNorm().mean());
+        EXPECT_LT(moved, 0.02 * h);
+        const fairing::Result n = fairing::fair(noisy, {}, automatic(op, 2));
+        const double moved_noisy =
+            std::sqrt((n.positions - noisy.positions).rowwise().squaredNorm().mean());
+        EXPECT_GT(moved_noisy, 0.15 * h);
+    }
+}
+
+// An explicit time step is used as given and nothing is estimated; and the automatic choice is
+// just a time step: giving it explicitly reproduces the automatic result bit for bit.
+TEST(AutoStrength, ExplicitValueWins) {
+    const TriangleMesh m = noisy_sphere(0.2);
+    const double h = meshes::mean_edge_length(m.positions, m.triangles);
+    Options o = automatic(Operator::CurvatureFlow, 2);
+    o.time_step = 3.0;
+    const fairing::Result given = fairing::fair(m, {}, o);
+    EXPECT_FALSE(given.automatic_time_step);
+    EXPECT_EQ(given.time_step, 3.0);
+    EXPECT_NEAR(given.lambda_dt, 3.0 * std::pow(h, 4), 1e-12 * given.lambda_dt);
+    EXPECT_EQ(given.noise_level, 0.0);
+    EXPECT_EQ(given.strength_iterations, 0);
+    EXPECT_EQ(given.strength_seconds, 0.0);
+
+    const fairing::Result chosen = fairing::fair(m, {}, automatic(Operator::CurvatureFlow, 2));
+    EXPECT_TRUE(chosen.automatic_time_step);
+    EXPECT_GT(chosen.strength_iterations, 0);
+    o.time_step = chosen.time_step;
+    const fairing::Result again = fairing::fair(m, {}, o);
+    EXPECT_EQ(again.positions, chosen.positions);
+    EXPECT_EQ(again.lambda_dt, chosen.lambda_dt);
+
+    o.time_step = -1.0;
+    EXPECT_THROW(fairing::fair(m, {}, o), fairing::Error);
+    o.time_step = {};  // back to automatic
+    EXPECT_FALSE(o.time_step.has_value());
+}
+
+// Section 5.1 with automatic strength: a flat irregular patch beside a noisy sphere (one mesh, two
+// components, so the estimate sees noise and chooses a real step) stays flat to 1e-12 under
+// curvature flow, while the sphere is smoothed.
+TEST(AutoStrength, CurvatureFlowLeavesAFlatPatchFlat) {
+    const TriangleMesh patch = meshes::translated(meshes::irregular_plane(16), Vec3(3, 0, 0));
+    const TriangleMesh sphere = noisy_sphere(0.25);
+    const TriangleMesh m = meshes::merge(sphere, patch);
+    const int ns = static_cast<int>(sphere.positions.rows());
+    for (int order : {1, 2}) {
+        SCOPED_TRACE(testing::Message() << "order " << order);
+        const fairing::Result r = fairing::fair(m, {}, automatic(Operator::CurvatureFlow, order, 3));
+        ASSERT_GT(r.time_step, 0);
+        double worst = 0;
+        for (int i = ns; i < m.positions.rows(); ++i)
+            worst = std::max(worst, (r.positions.row(i) - m.positions.row(i)).norm());
+        EXPECT_LT(worst, 1e-12 * meshes::bbox_diagonal(patch.positions));
+        EXPECT_LT(sphere_error(r.positions.topRows(ns)), 0.8 * sphere_error(sphere.positions));
+    }
+}
+
+// Fig. 10 with automatic strength: a noisy two-density sphere comes out closer to a sphere under
+// curvature flow, and rounder than under the umbrella, whose sliding bulges the dense half.
+TEST(AutoStrength, CurvatureFlowKeepsAnIrregularSphereASphere) {
+    const TriangleMesh clean = meshes::two_density_sphere(3);
+    const double h = meshes::mean_edge_length(clean.positions, clean.triangles);
+    const TriangleMesh m = meshes::radial_noise(clean, 0.25 * h * std::sqrt(3.0), 17);
+    const double before = meshes::radius_spread(m.positions);
+    const fairing::Result curvature = fairing::fair(m, {}, automatic(Operator::CurvatureFlow, 2));
+    const fairing::Result umbrella = fairing::fair(m, {}, automatic(Operator::Umbrella, 2));
+    EXPECT_LT(meshes::radius_spread(curvature.positions), 0.5 * before);
+    EXPECT_LT(meshes::radius_spread(curvature.positions), meshes::radius_spread(umbrella.positions));
+}
+
+// Every option with automatic strength: selection, soft weights, the three boundary modes,
+// several components, explicit integration (kept within its stability bound: no warning), several
+// steps, both orders and every operator. Each gives a finite result closer to the truth.
+TEST(AutoStrength, EveryOptionGivesASensibleResult) {
+    const TriangleMesh sphere = noisy_sphere(0.2);
+    const int n = static_cast<int>(sphere.positions.rows());
+    fairing::Constraints selection, weights;
+    selection.fixed.assign(n, 0);
+    for (int i = 0; i < n; i += 5) selection.fixed[i] = 1;
+    weights.weights.assign(n, 1.0);
+    for (int i = 0; i < n; ++i) weights.weights[i] = 0.3 + 0.7 * ((i * 7) % 10) / 9.0;
+    for (Operator op : meshes::kOperators) {
+        for (int order : {1, 2}) {
+            for (int variant = 0; variant < 4; ++variant) {
+                SCOPED_TRACE(testing::Message() << fairing::to_string(op) << " order " << order
+                                                << " variant " << variant);
+                Options o = automatic(op, order, variant == 3 ? 3 : 1);
+                const fairing::Constraints& c =
+                    variant == 1 ? selection : variant == 2 ? weights : fairing::Constraints{};
+                const fairing::Result r = fairing::fair(sphere, c, o);
+                ASSERT_TRUE(r.positions.allFinite());
+                EXPECT_GT(r.time_step, 0);
+                EXPECT_LT(sphere_error(r.positions), 0.8 * sphere_error(sphere.positions));
+                for (int i = 0; i < n; ++i) {
+                    if (variant == 1 && selection.fixed[i]) {
+                        ASSERT_EQ(r.positions.row(i), sphere.positions.row(i));
+                    }
+                }
+            }
+            Options e = automatic(op, order, 2);
+            e.integration = fairing::Integration::Explicit;
+            const fairing::Result r = fairing::fair(sphere, {}, e);
+            EXPECT_TRUE(r.warnings.empty()) << (r.warnings.empty() ? "" : r.warnings[0]);
+            EXPECT_GT(r.time_step, 0);
+            EXPECT_LT(sphere_error(r.positions), 0.9 * sphere_error(sphere.positions));
+        }
+    }
+    // Open mesh: a noisy height field z = 0 (truth) in each boundary mode.
+    const TriangleMesh open = meshes::noisy_open_grid(24, 0.0, 0.2);
+    double before = 0;
+    for (int i = 0; i < open.positions.rows(); ++i) before += open.positions(i, 2) * open.positions(i, 2);
+    for (BoundaryMode mode : {BoundaryMode::Fixed, BoundaryMode::SmoothCurve, BoundaryMode::VirtualVertex}) {
+        SCOPED_TRACE(fairing::to_string(mode));
+        Options o = automatic(Operator::CurvatureFlow, 2);
+        o.boundary = mode;
+        const fairing::Result r = fairing::fair(open, {}, o);
+        ASSERT_TRUE(r.positions.allFinite());
+        EXPECT_GT(r.time_step, 0);
+        double after = 0;
+        for (int i = 0; i < r.positions.rows(); ++i) after += r.positions(i, 2) * r.positions(i, 2);
+        EXPECT_LT(after, 0.5 * before);
+    }
+    // Two components far apart: one estimate for the whole mesh, both smoothed.
+    const TriangleMesh two = meshes::merge(sphere, meshes::translated(noisy_sphere(0.2, 3, 9), Vec3(5, 0, 0)));
+    const fairing::Result r = fairing::fair(two, {}, automatic(Operator::Umbrella, 2));
+    EXPECT_LT(sphere_error(r.positions.topRows(n)), 0.8 * sphere_error(sphere.positions));
+}
+
+// Progress covers the estimate and the solves, never goes back, and ends at 1.
+TEST(AutoStrength, ProgressIsMonotone) {
+    const TriangleMesh m = noisy_sphere(0.25, 4);
+    Options o = automatic(Operator::CurvatureFlow, 2, 2);
+    std::vector<double> seen;
+    o.progress = [&seen](double f) { seen.push_back(f); };
+    fairing::fair(m, {}, o);
+    ASSERT_GE(seen.size(), 3u);
+    for (std::size_t k = 1; k < seen.size(); ++k) EXPECT_GE(seen[k], seen[k - 1]);
+    EXPECT_GT(seen.front(), 0.0);
+    EXPECT_LT(seen.front(), 1.0 / 3 + 1e-12);  // the estimate's share comes first
+    EXPECT_DOUBLE_EQ(seen.back(), 1.0);
+}
+
+// White box: on a mesh with known normal noise the estimator's pieces agree with the truth; the
+// normals of the smoothed copy are unit vectors within a few degrees of the sphere's.
+TEST(AutoStrength, RobustNormalsFollowTheSurface) {
+    const TriangleMesh m = noisy_sphere(0.25, 4);
+    const fairing::HalfEdgeMesh he = fairing::HalfEdgeMesh::build(m.positions, m.triangles);
+    const fairing::SparseOperator op = fairing::assemble(Operator::Umbrella, he, m.positions);
+    const int n = static_cast<int>(m.positions.rows());
+    const Positions normals =
+        fairing::detail::robust_normals(he, fairing::detail::smoothed_copy(op, m.positions, n, 4));
+    double worst = 1;
+    for (int i = 0; i < n; ++i) {
+        EXPECT_NEAR(normals.row(i).norm(), 1.0, 1e-12);
+        worst = std::min(worst, normals.row(i).dot(m.positions.row(i).normalized()));
+    }
+    EXPECT_GT(worst, std::cos(10 * M_PI / 180));
+}
