@@ -106,8 +106,17 @@ void addFilterParameters(CLI::App& app, CommandLine& cl, const Values& d)
                                                     : "expected 'auto' or a number, got '" + t + "'";
             },
             "auto|T"));
-    app.add_option("--steps", cl.steps,
-                   "[stepSmoothNum] Number of time steps. Default: " + std::to_string(d.steps))
+    app.add_option_function<int>(
+           "--steps",
+           [&cl](int n) {
+               cl.stepsGiven = true;
+               cl.steps = n;
+           },
+           "[stepSmoothNum] Number of time steps, each of the whole time step. Default: the "
+           "filter's, " + std::to_string(filter_parameters::defaultSteps(fairing::Operator::Umbrella)) +
+               " (umbrella, curvature) or " +
+               std::to_string(filter_parameters::defaultSteps(fairing::Operator::ScaleDependent)) +
+               " (scale-dependent)")
         ->type_name("N");
     app.add_option("--order", cl.order,
                    "[order] 1: diffusion with L; 2: with L^2 (section 2.6, recommended). "
@@ -187,7 +196,6 @@ void addToolOptions(CLI::App& app, CommandLine& cl)
 int parseCommandLine(int argc, char** argv, CommandLine& cl)
 {
     const Values d = filter_parameters::defaults(fairing::Operator::CurvatureFlow);
-    cl.steps = d.steps;
     cl.order = d.order + 1;
     cl.tolerance = d.tolerance;
     cl.maxIterations = d.maxIterations;
@@ -228,7 +236,7 @@ Values filterValues(const CommandLine& cl)
 {
     Values v = filter_parameters::defaults(operatorOf(cl));
     if (cl.timeStepGiven) v.timeStep = cl.timeStep;
-    v.steps = cl.steps;
+    if (cl.stepsGiven) v.steps = cl.steps;
     v.order = cl.order - 1;
     v.integration = cl.normalized ? 2 : cl.explicitIntegration ? 1 : 0;
     v.preserveVolume = !cl.noVolume;

@@ -15,7 +15,8 @@ struct CommandLine {
     std::string operatorName = "curvature";  // umbrella | scale-dependent | curvature
     bool timeStepGiven = false;              // otherwise automatic (--time-step auto)
     double timeStep = 0;
-    int steps = 1;
+    bool stepsGiven = false;                 // otherwise the filter's default number of steps
+    int steps = 0;
     int order = 2;                           // 1 | 2
     bool explicitIntegration = false, normalized = false;
     bool noVolume = false, area = false;
