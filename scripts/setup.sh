@@ -20,11 +20,15 @@ packages+=(meshlab qtbase5-dev libqt5opengl5-dev libglew-dev dpkg-dev xz-utils p
 
 # MeshLab 2020.09 headers (Debian source package, pinned) into the cache; prints its directory.
 meshlab_2020_source=$("$root/scripts/meshlab-2020-sdk.sh")
-# MeshLab 2025.07 plugin SDK: meshlab-common and io_base built in float and double precision into
-# the cache (cold: about 8 to 15 minutes on 2 cores; then 0.1 s); prints its directory.
+# MeshLab 2025.07 plugin SDK: meshlab-common and io_base built in float and double precision, and
+# the MeshLab 2025.07 GUI (float, io_base only), into the cache; prints its directory.
 meshlab_2025_sdk=$("$root/scripts/meshlab-2025-sdk.sh")
+# MeshLab 2022.02 (Debian 13 / Ubuntu 24.04): meshlab-common, io_base and the GUI, float, from
+# trixie's source package (pinned) into the same cache; prints its directory.
+# Cold cost of both SDKs and a warm run: scripts/meshlab-2025-sdk.md.
+meshlab_2022_sdk=$("$root/scripts/meshlab-2022-sdk.sh")
 
 cmake -S "$root" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DMESHLAB_2020_SOURCE="$meshlab_2020_source" -DMESHLAB_2025_SDK="$meshlab_2025_sdk" \
-  "$@" >/dev/null
+  -DMESHLAB_2022_SDK="$meshlab_2022_sdk" "$@" >/dev/null
 cmake --build "$build_dir" -j2
