@@ -27,8 +27,11 @@ meshlab_2025_sdk=$("$root/scripts/meshlab-2025-sdk.sh")
 # trixie's source package (pinned) into the same cache; prints its directory.
 # Cold cost of both SDKs and a warm run: scripts/meshlab-2025-sdk.md.
 meshlab_2022_sdk=$("$root/scripts/meshlab-2022-sdk.sh")
+# Debian 13's own meshlab package (7.7 MB, sha256 pinned; unpacked by a test, never installed).
+debian13_meshlab=$("$root/scripts/debian13-meshlab.sh")
 
 cmake -S "$root" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DMESHLAB_2020_SOURCE="$meshlab_2020_source" -DMESHLAB_2025_SDK="$meshlab_2025_sdk" \
-  -DMESHLAB_2022_SDK="$meshlab_2022_sdk" "$@" >/dev/null
+  -DMESHLAB_2022_SDK="$meshlab_2022_sdk" -DMESHLAB_2022_DEBIAN_DEB="$debian13_meshlab" \
+  "$@" >/dev/null
 cmake --build "$build_dir" -j2
