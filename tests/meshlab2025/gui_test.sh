@@ -160,14 +160,35 @@ done
 shot sphere-dialog
 ocr "$work/sphere-dialog.png" --crop "$dialog" > dialog.txt
 # labels and documented defaults (README "Parameters": curvature flow time step 22.5, 1 step,
-# L², implicit, volume preserved, open components None, boundary Fixed, tolerance 1e-8, 2000
-# iterations) and the python name MeshLab shows
-for t in "Time step (dimensionless)" "22.5" "Smoothing steps" "Operator order" "Integration" \
-         "Implicit" "Preserve volume" "Open components" "None" "Boundary" "Fixed" \
-         "Solver tolerance" "1e-08" "Max solver iterations" "2000" "Affect only selection" \
-         "apply_coord_implicit_fairing_curvature_flow" "Preview" "Apply"; do
+# L², implicit, open components None, boundary Fixed, tolerance 1e-8, 2000 iterations): each
+# value read on its label's row (a strip of the dialog at the label's height, OCR'd alone, so
+# the page layout tesseract guesses cannot pair a label with another row's value)
+read -r dw dh dx dy <<<"$(echo "$dialog" | tr 'x+' '  ')"
+while IFS='|' read -r label value; do
+    pos=$(ocr "$work/sphere-dialog.png" "$label" --crop "$dialog") \
+        || { cat dialog.txt; fail "the dialog lacks the label '$label'"; }
+    row=$(ocr "$work/sphere-dialog.png" --crop "${dw}x30+${dx}+$((${pos#* } - 15))")
+    grep -qE -- " $value( |$)" <<<"$row" \
+        || fail "the dialog's row '$row' does not show the default '$value' of '$label'"
+    echo "default: $row"
+done <<'EOF_DEFAULTS'
+Time step (dimensionless)|22\.5
+Smoothing steps|1
+Operator order|L. \(second order, recommended\)
+Integration|Implicit
+Open components|None
+Boundary|Fixed
+Solver tolerance|[1l]e-08
+Max solver iterations|2000
+EOF_DEFAULTS
+for t in "Preserve volume" "Use vertex quality as smoothing weight" "Invert quality weight" \
+         "Affect only selection" "Freeze operator" "Accept unconverged solves" "Preview" "Apply"; do
     grep -qF -- "$t" dialog.txt || { cat dialog.txt; fail "the dialog lacks '$t'"; }
 done
+if [ "$tag" = 2025 ]; then   # 2025.07's dialog also shows the pymeshlab name
+    grep -qF "apply_coord_implicit_fairing_curvature_flow" dialog.txt \
+        || { cat dialog.txt; fail "the dialog lacks the pymeshlab name"; }
+fi
 echo "dialog shows the documented defaults: $work/sphere-dialog.png"
 
 applied() { log_count "Applied filter"; }
