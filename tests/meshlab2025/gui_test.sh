@@ -290,6 +290,7 @@ echo "the progress bar moved through ${#seen[@]} states on the 1 M-face torus"
 grep "^LOG: .*Time: " torus.log | tail -n 1
 stop_gui
 
+rm -f "$work"/*.ocr.png "$work/torus-run.png"    # OCR intermediates and the polling shot
 echo "screenshots kept in $work:"
-ls "$work"/*.png | grep -v "\.ocr\.png$" | sed 's/^/  /'
+ls "$work"/*.png | sed 's/^/  /'
 echo PASS
