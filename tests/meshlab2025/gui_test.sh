@@ -18,6 +18,7 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 repo=${REPO:-$(cd "$here/../.." && pwd)}
 work=${WORK_DIR:?}
 tag=${FAIRING_MESHLAB:-2025}
+export FAIRING_GUI_HOME=${FAIRING_GUI_HOME:-$work/home}   # MeshLab's private folders
 version=2025.07
 [ "$tag" = 2022 ] && version=2022.02
 
@@ -229,6 +230,14 @@ echo "the log pane shows the figures: $work/sphere-log.png"
 export_mesh "$work/exports/sphere-applied.ply"
 mltest moved "$work/exports/sphere-loaded.ply" "$work/exports/sphere-applied.ply" 0.5
 stop_gui
+# MeshLab read the pre-seeded settings (a value it could not read would have been rewritten
+# with its default, true) and so never made up a statistics id
+conf=$FAIRING_GUI_HOME/config/VCG/MeshLab_64bit_fp.conf
+for p in checkForUpdate sendAnonymousData; do
+    grep -q "System::$p.*value=.\"false" "$conf" || { cat "$conf"; fail "$conf: $p is not false"; }
+done
+if grep -q "^UID=" "$conf"; then fail "MeshLab created a usage-statistics id"; fi
+echo "settings kept as seeded: no update check, no statistics ($conf)"
 
 # ---- 2. refused input: MeshLab's error dialog with our message, mesh unchanged ---------------
 mltest gen nonmanifold "$work/nonmanifold.ply"
