@@ -12,7 +12,8 @@
 # XDG_DATA_HOME at a private folder of the build directory and links the plugin there.
 # XDG_CONFIG_HOME points at a private folder too, whose settings
 # (VCG/MeshLab_64bit_fp.conf) are pre-seeded: the first-start question about usage statistics
-# is answered (informativeShown), and the online update check and the statistics are off.
+# is answered (informativeShown), and the online update check and the statistics are off
+# (2025.07: two settings; 2022.02 has none, so its last check is dated in the far future).
 #
 # Environment:
 #   BUILD_DIR        build directory (default <repo>/build)
@@ -68,6 +69,10 @@ if [ ! -f "$conf" ]; then
         echo "[General]"
         echo "informativeShown=true"
         echo "dontRemindMeToSendEmail=true"
+        # 2022.02 checks for updates and sends statistics, unconditionally, at the first start
+        # of each day (MainWindow::showEvent): the last check is dated in the far future
+        # (QDate's text format, which QDate::fromString reads back)
+        echo "lastTimeMeshLabVersionCheckedOnStart=$(LC_ALL=C date -d 2999-12-31 '+%a %b %-d %Y')"
         param checkForUpdate RichBool false
         param sendAnonymousData RichBool false
         if [ -n "${FAIRING_WINDOW_SIZE:-}" ]; then
