@@ -26,11 +26,18 @@ packages+=(python3-numpy f3d fonts-dejavu-core)
 
 # MeshLab 2020.09 headers (Debian source package, pinned) into the cache; prints its directory.
 meshlab_2020_source=$("$root/scripts/meshlab-2020-sdk.sh")
-# MeshLab 2025.07 plugin SDK: meshlab-common and io_base built in float and double precision into
-# the cache (cold: about 8 to 15 minutes on 2 cores; then 0.1 s); prints its directory.
+# MeshLab 2025.07 plugin SDK: meshlab-common and io_base built in float and double precision, and
+# the MeshLab 2025.07 GUI (float, io_base only), into the cache; prints its directory.
 meshlab_2025_sdk=$("$root/scripts/meshlab-2025-sdk.sh")
+# MeshLab 2022.02 (Debian 13 / Ubuntu 24.04): meshlab-common, io_base and the GUI, float, from
+# trixie's source package (pinned) into the same cache; prints its directory.
+# Cold cost of both SDKs and a warm run: scripts/meshlab-2025-sdk.md.
+meshlab_2022_sdk=$("$root/scripts/meshlab-2022-sdk.sh")
+# Debian 13's own meshlab package (7.7 MB, sha256 pinned; unpacked by a test, never installed).
+debian13_meshlab=$("$root/scripts/debian13-meshlab.sh")
 
 cmake -S "$root" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DMESHLAB_2020_SOURCE="$meshlab_2020_source" -DMESHLAB_2025_SDK="$meshlab_2025_sdk" \
+  -DMESHLAB_2022_SDK="$meshlab_2022_sdk" -DMESHLAB_2022_DEBIAN_DEB="$debian13_meshlab" \
   "$@" >/dev/null
 cmake --build "$build_dir" -j2

@@ -9,6 +9,7 @@
 //
 //   list
 //       every filter of PLUGIN: python name, then one line per parameter
+//       (the deprecated aliases MeshLab 2022.02's function set adds: "deprecated <name>" lines)
 //       "param <python name> <python type> <meshlab name> default=<value>", followed for an
 //       enum by "labels <python name> <label>|<label>|..." (the strings pymeshlab accepts)
 //   apply IN.ply OUT.ply PYTHON_FILTER_NAME [--select-x-gt V] [--params-out FILE]
@@ -252,6 +253,11 @@ int cmdList()
     int n = 0;
     for (const pymeshlab::Function& f : fs.filterFunctionIterator()) {
         if (!f.meshlabFunctionName().startsWith("Implicit Fairing")) continue;
+        if (f.isDeprecated()) {   // 2022.02 adds the old, menu-text-derived name of each filter
+            std::printf("deprecated %s <- '%s'\n", qUtf8Printable(f.pythonFunctionName()),
+                        qUtf8Printable(f.meshlabFunctionName()));
+            continue;
+        }
         ++n;
         std::printf("filter %s <- '%s'\n", qUtf8Printable(f.pythonFunctionName()),
                     qUtf8Printable(f.meshlabFunctionName()));

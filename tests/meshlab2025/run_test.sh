@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# One MeshLab 2025.07 integration test (registered in CTest by CMakeLists.txt, label meshlab2025):
+# One MeshLab 2025.07 or 2022.02 integration test (registered in CTest by host_tests.cmake, labels
+# meshlab2025, meshlab2022):
 # the plugin run the way pymeshlab 2025.7 runs it, by pymeshlab_host (no Python, no display).
 #   run_test.sh list                      python names, types and defaults of every parameter
 #   run_test.sh run FILTER MESH[+QUALITY] [python_name=value ...]
@@ -12,10 +13,11 @@
 #   run_test.sh failure                   non-manifold input: the error comes back, mesh unchanged,
 #                                         the repair filter named in this host's words
 #   run_test.sh warnings                  an explicit step past its bound: flagged in the dict
-#   run_test.sh reject                    the other precision's binary is refused with the
-#                                         host's message
+#   run_test.sh reject                    OTHER_PLUGIN (the other precision's or the other MeshLab
+#                                         version's binary) is refused with the host's message
+#                                         "... has different $REJECT_REASON from the running ..."
 # Environment (set by CMake): PREC (float|double), HOST, ENGINE_REFERENCE, PLUGIN, OTHER_PLUGIN,
-# PLUGINS_DIR, WORK_DIR.
+# REJECT_REASON ("floating point precision" or "version"), PLUGINS_DIR, WORK_DIR.
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 mltest() { python3 "$here/../meshlab2020/mltest.py" "$@"; }
@@ -197,8 +199,8 @@ warnings)
     ;;
 reject)
     host reject "$OTHER_PLUGIN" | tee host.log
-    grep -q "^rejected: libfilter_implicit_fairing.so has different floating point precision from the running MeshLab version.$" host.log \
-        || { echo "FAIL: not the host's precision message"; exit 1; }
+    grep -qx "rejected: libfilter_implicit_fairing.so has different ${REJECT_REASON:-floating point precision} from the running MeshLab version." host.log \
+        || { echo "FAIL: not the host's message about a different ${REJECT_REASON:-floating point precision}"; exit 1; }
     ;;
 *)
     echo "unknown case $1"; exit 2 ;;
