@@ -160,8 +160,8 @@ for f in "${filters[@]}"; do
 done
 shot sphere-dialog
 ocr "$work/sphere-dialog.png" --crop "$dialog" > dialog.txt
-# labels and documented defaults (README "Parameters": curvature flow time step 22.5, 1 step,
-# L², implicit, open components None, boundary Fixed, tolerance 1e-8, 2000 iterations): each
+# labels and documented defaults (README "Parameters": curvature flow time step 0 = automatic,
+# 4 steps, L2, implicit, open components None, boundary Fixed, tolerance 1e-8, 2000 iterations): each
 # value read on its label's row (a strip of the dialog at the label's height, OCR'd alone, so
 # the page layout tesseract guesses cannot pair a label with another row's value)
 read -r dw dh dx dy <<<"$(echo "$dialog" | tr 'x+' '  ')"
@@ -173,9 +173,9 @@ while IFS='|' read -r label value; do
         || fail "the dialog's row '$row' does not show the default '$value' of '$label'"
     echo "default: $row"
 done <<'EOF_DEFAULTS'
-Time step (dimensionless)|22\.5
-Smoothing steps|1
-Operator order|L. \(second order, recommended\)
+Time step|0
+Smoothing steps|4
+Operator order|L2 \(second order\)
 Integration|Implicit
 Open components|None
 Boundary|Fixed
