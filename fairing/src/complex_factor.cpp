@@ -199,7 +199,54 @@ void ComplexFactorSolver::next_direction(const double* beta) {
     });
 }
 
-int ComplexFactorSolver::correct(const Positions& g, Positions& x, const std::array<double, 3>& goal,
+std::array<double, 3> ComplexFactorSolver::set_residual(const Positions& b, const Positions& x,
+                                                        ResidualNorm norm) {
+    const SparseOperator& op = *system_.op;
+    const int n = op.size();
+    const char* f = system_.free.data();
+    const double* d = system_.diagonal.data();
+    const double* m = op.mass.data();
+    const double* xs = x.data();
+    const double* bs = b.data();
+    double* vs = q_.data();  // v = P M^-1 K x in q's first three columns (stride 6)
+    double* rs = r_.data();
+    const int* start = op.row_start.data();
+    const int* column = op.column.data();
+    const double* weight = op.weight.data();
+    for_each_row(n, op.threads, [=](int i) {
+        double k[3];
+        k_row(i, xs, start, column, weight, k[0], k[1], k[2]);
+        const double inverse = f[i] && m[i] > 0 ? 1.0 / m[i] : 0.0;
+        for (int c = 0; c < 3; ++c) vs[6 * i + c] = k[c] * inverse;
+    });
+    // r = b - (D x + lambda_dt K v) on the free rows, as LinearSystem::apply computes A x.
+    const double lambda = system_.lambda_dt;
+    const bool l2 = norm == ResidualNorm::L2;
+    const std::array<double, 3> sums = blocked_reduce<3>(
+        n, op.threads,
+        [=](int i, double* a) {
+            double* ri = rs + 6 * i;
+            for (int c = 0; c < 6; ++c) ri[c] = 0;
+            if (!f[i]) return;
+            double k[3] = {0, 0, 0};
+            for (int e = start[i]; e < start[i + 1]; ++e) {
+                const double* vj = vs + 6 * column[e];
+                for (int c = 0; c < 3; ++c) k[c] += weight[e] * (vj[c] - vs[6 * i + c]);
+            }
+            for (int c = 0; c < 3; ++c) {
+                ri[c] = bs[3 * i + c] - (d[i] * xs[3 * i + c] + lambda * k[c]);
+                a[c] = l2 ? a[c] + ri[c] * ri[c] : std::max(a[c], std::abs(ri[c]));
+            }
+        },
+        [l2](std::array<double, 3>& total, const std::array<double, 3>& part) {
+            for (int c = 0; c < 3; ++c)
+                total[c] = l2 ? total[c] + part[c] : std::max(total[c], part[c]);
+        });
+    if (!l2) return sums;
+    return {std::sqrt(sums[0]), std::sqrt(sums[1]), std::sqrt(sums[2])};
+}
+
+int ComplexFactorSolver::correct(Positions& x, const std::array<double, 3>& goal,
                                  ResidualNorm norm, int cap, std::array<bool, 3> active,
                                  const std::function<void(const std::array<double, 3>&)>& after) {
     const char* f = system_.free.data();
@@ -208,13 +255,10 @@ int ComplexFactorSolver::correct(const Positions& g, Positions& x, const std::ar
                    ? std::array<double, 3>{std::sqrt(sums[0]), std::sqrt(sums[1]), std::sqrt(sums[2])}
                    : std::array<double, 3>{sums[0], sums[1], sums[2]};
     };
-    // r = g (real), p = J^-1 r.
+    // r = g (set by set_residual), p = J^-1 r (zero on the fixed rows).
     for_each_row(system_.op->size(), system_.op->threads, [&](int i) {
-        for (int c = 0; c < 3; ++c) {
-            r_(i, c) = f[i] ? g(i, c) : 0.0;
-            r_(i, 3 + c) = 0;
-            p_(i, c) = p_(i, 3 + c) = 0;
-        }
+        if (!f[i])
+            for (int c = 0; c < 6; ++c) p_(i, c) = 0;
     });
     std::array<double, 9> sums = update(nullptr, true, norm, nullptr);
     std::array<double, 3> rn = norms(sums);

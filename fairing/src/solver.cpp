@@ -386,7 +386,7 @@ int factored_fcg(const LinearSystem& system, FactoredPreconditioner& preconditio
 // whichever is larger) is the scale. Without fixed rows the two are the same and the product is
 // skipped. q and scratch are work space.
 Column3 right_hand_side(const LinearSystem& system, const Positions& x, ResidualNorm norm,
-                        Positions& b, Positions& q, Positions& scratch) {
+                        Positions& b) {
     const int n = system.op->size();
     const int threads = system.op->threads;
     const std::vector<char>& free = system.free;
@@ -394,7 +394,7 @@ Column3 right_hand_side(const LinearSystem& system, const Positions& x, Residual
     detail::for_each_row(n, threads, [&](int i) { b.row(i) = d[i] * x.row(i); });
     const Column3 norm_b = column_norms(b, free, norm, threads);
     if (std::find(free.begin(), free.end(), 0) == free.end()) return norm_b;
-    Positions fixed_only = Positions::Zero(n, 3);
+    Positions fixed_only = Positions::Zero(n, 3), q, scratch;
     for (int i = 0; i < n; ++i)
         if (!free[i]) fixed_only.row(i) = x.row(i);
     system.apply(fixed_only, q, scratch);
@@ -403,6 +403,76 @@ Column3 right_hand_side(const LinearSystem& system, const Positions& x, Residual
     Column3 scale;
     for (int c = 0; c < 3; ++c) scale[c] = std::max(norm_b[c], norm_eb[c]);
     return scale;
+}
+
+// Worst column of rn relative to the scale of the stopping rule.
+double relative(const Column3& rn, const Column3& scale) {
+    double worst = 0;
+    for (int c = 0; c < 3; ++c) worst = std::max(worst, scale[c] > 0 ? rn[c] / scale[c] : rn[c]);
+    return worst;
+}
+
+// SolveSettings::progress from residual norms: how far they have come down, on a log scale,
+// from the first ones seen to the goal.
+class Progress {
+public:
+    Progress(const SolveSettings& settings, const Column3& goal) : goal_(goal) {
+        if (settings.progress)
+            callback_ = [this, &settings](const Column3& rn) { settings.progress(fraction(rn)); };
+    }
+    void start(const Column3& rn) {
+        if (started_) return;
+        initial_ = rn;
+        started_ = true;
+    }
+    const std::function<void(const Column3&)>& callback() const { return callback_; }
+
+private:
+    double fraction(const Column3& now) const {
+        double worst = 1;
+        for (int c = 0; c < 3; ++c) {
+            if (!(now[c] > goal_[c]) || !(initial_[c] > goal_[c])) continue;
+            worst = std::min(worst,
+                             std::log(initial_[c] / now[c]) / std::log(initial_[c] / goal_[c]));
+        }
+        return std::max(0.0, worst);
+    }
+    Column3 goal_, initial_{0, 0, 0};
+    bool started_ = false;
+    std::function<void(const Column3&)> callback_;
+};
+
+// CG's recursively updated residual drifts from the true one on ill-conditioned systems (the
+// L^2 forms), so convergence is confirmed on the true residual, restarting from the current
+// iterate when it disagrees, at most this many times.
+constexpr int kMaxRestarts = 8;
+
+// Automatic, L^2 without soft weights (complex_factor.h): corrections by the complex solve until
+// the true L^2 residual meets the goal. Needs only b besides the complex solver's vectors.
+SolveStats solve_complex(const LinearSystem& system, Positions& x, const Positions& b,
+                         const Column3& scale, const Column3& goal, const SolveSettings& settings) {
+    SolveStats stats;
+    stats.complex_factor = true;
+    detail::ComplexFactorSolver solver(system);
+    Progress progress(settings, goal);
+    std::array<bool, 3> active{false, false, false};
+    Column3 rn{0, 0, 0};
+    for (int restart = 0;; ++restart) {
+        rn = solver.set_residual(b, x, settings.norm);
+        for (int c = 0; c < 3; ++c) {
+            check_finite(rn[c], stats.iterations);
+            active[c] = rn[c] > goal[c];
+        }
+        progress.start(rn);
+        if (!any(active) || restart == kMaxRestarts || stats.iterations >= settings.max_iterations)
+            break;
+        stats.iterations += solver.correct(x, goal, settings.norm,
+                                           settings.max_iterations - stats.iterations, active,
+                                           progress.callback());
+    }
+    stats.residual = relative(rn, scale);
+    stats.converged = !any(active);
+    return stats;
 }
 
 // Automatic's decision after the Jacobi trial: the iterations still needed at the trial's
@@ -426,16 +496,16 @@ SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& 
     const int threads = system.op->threads;
     const std::vector<char>& free = system.free;
     const char* f = free.data();
-    // scratch holds M^-1 K p between the two products of an L^2 system (and the inner solves'
-    // first solution); first-order solves never touch it. p (the CG direction) is allocated only
-    // when a real CG runs: the complex L^2 path keeps its own directions, and peak memory is
-    // what decides the largest mesh.
-    Positions b(n, 3), r(n, 3), p, q(n, 3), scratch(system.order == 2 ? n : 0, 3);
-
-    const Column3 scale = right_hand_side(system, x, settings.norm, b, q, scratch);
+    Positions b(n, 3);
+    const Column3 scale = right_hand_side(system, x, settings.norm, b);
     Column3 goal;
     for (int c = 0; c < 3; ++c) goal[c] = scale[c] > 0 ? settings.tolerance * scale[c] : 0.0;
+    if (settings.preconditioner == Preconditioner::Automatic && detail::complex_factor_applies(system))
+        return solve_complex(system, x, b, scale, goal, settings);
 
+    // scratch holds M^-1 K p between the two products of an L^2 system (and the inner solves'
+    // first solution); first-order solves never touch it.
+    Positions r(n, 3), p(n, 3), q(n, 3), scratch(system.order == 2 ? n : 0, 3);
     SolveStats stats;
     std::unique_ptr<FactoredPreconditioner> factored;
     Positions z;
@@ -444,43 +514,16 @@ SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& 
         z.resize(n, 3);
         stats.factored = true;
     };
-    // Automatic L^2 without soft weights: one complex solve per correction (complex_factor.h).
-    std::unique_ptr<detail::ComplexFactorSolver> complex;
-    if (settings.preconditioner == Preconditioner::Automatic && detail::complex_factor_applies(system))
-        complex = std::make_unique<detail::ComplexFactorSolver>(system);
-    bool trial_pending = !complex && system.order == 2 &&
-                         settings.preconditioner == Preconditioner::Automatic;
+    bool trial_pending = system.order == 2 && settings.preconditioner == Preconditioner::Automatic;
     if (system.order == 2 && settings.preconditioner == Preconditioner::Factored) use_factored();
     // Jacobi's diagonal (for L^2 a sweep over the 2-ring) only when Jacobi iterations may run.
-    const std::vector<double> inverse =
-        factored || complex ? std::vector<double>() : inverse_jacobi(system);
+    const std::vector<double> inverse = factored ? std::vector<double>() : inverse_jacobi(system);
     // The iteration cap bounds the work too: an inner iteration is one product with K, an
     // iteration of the L^2 system two, so the inner solves get twice the cap.
     const int inner_cap = 2 * settings.max_iterations;
 
-    auto relative = [&](const Column3& rn) {
-        double worst = 0;
-        for (int c = 0; c < 3; ++c) worst = std::max(worst, scale[c] > 0 ? rn[c] / scale[c] : rn[c]);
-        return worst;
-    };
-    Column3 initial{0, 0, 0};
-    bool have_initial = false;
-    auto fraction_done = [&](const Column3& now) {
-        double worst = 1;
-        for (int c = 0; c < 3; ++c) {
-            if (!(now[c] > goal[c]) || !(initial[c] > goal[c])) continue;
-            worst = std::min(worst, std::log(initial[c] / now[c]) / std::log(initial[c] / goal[c]));
-        }
-        return std::max(0.0, worst);
-    };
-    std::function<void(const Column3&)> after_iteration;
-    if (settings.progress)
-        after_iteration = [&](const Column3& rn) { settings.progress(fraction_done(rn)); };
-
-    // CG's recursively updated residual drifts from the true one on ill-conditioned systems (the
-    // L^2 forms), so convergence is confirmed on the true residual, restarting from the current
-    // iterate when it disagrees.
-    constexpr int kMaxRestarts = 8;
+    Progress progress(settings, goal);
+    const std::function<void(const Column3&)>& after_iteration = progress.callback();
     std::array<bool, 3> active{false, false, false};
     Column3 rn{0, 0, 0};
     for (int restart = 0;; ++restart) {
@@ -493,21 +536,10 @@ SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& 
             check_finite(rn[c], stats.iterations);
             active[c] = rn[c] > goal[c];
         }
-        if (!have_initial) {
-            initial = rn;
-            have_initial = true;
-        }
+        progress.start(rn);
         if (!any(active) || restart == kMaxRestarts || stats.iterations >= settings.max_iterations ||
             stats.inner_iterations >= inner_cap)
             break;
-        if (complex) {
-            stats.iterations += complex->correct(r, x, goal, settings.norm,
-                                                 settings.max_iterations - stats.iterations,
-                                                 active, after_iteration);
-            stats.complex_factor = true;
-            continue;
-        }
-        p.resize(n, 3);
         if (factored) {
             stats.iterations = factored_fcg(system, *factored, x, r, p, q, z, scratch, goal,
                                             settings.norm, stats.iterations,
@@ -535,7 +567,7 @@ SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& 
             --restart;  // the switch (or going on) is not a restart
         }
     }
-    stats.residual = relative(rn);
+    stats.residual = relative(rn, scale);
     stats.converged = !any(active);
     return stats;
 }

@@ -593,8 +593,10 @@ int main(int argc, char** argv)
     app.add_option("--preconditioner", preconditionerName,
                    "auto, jacobi or factored. factored (order 2 only) preconditions the L^2 system "
                    "with two first-order solves per iteration: its cost grows as the 4th root of "
-                   "the time step instead of the square root. auto starts with jacobi and "
-                   "switches when the solve turns out heavy. Default: auto")
+                   "the time step instead of the square root. auto solves an L^2 step without "
+                   "vertex weights as one complex first-order solve, Re (M + i sqrt(dt) K)^-1 b; "
+                   "with weights it starts with jacobi and switches when the solve turns out "
+                   "heavy. Default: auto")
         ->check(CLI::IsMember({"auto", "jacobi", "factored"}))
         ->type_name("NAME");
     app.add_option("--threads", threads,
