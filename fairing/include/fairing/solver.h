@@ -26,10 +26,11 @@
 // Automatic, order 2 without soft weights (D = M on the free rows, the filters' default): the
 // system factors over the complex numbers, A = (M + i s K) M^-1 (M - i s K), and the step is
 // x = Re (M + i s K)^-1 b, one complex solve (COCG with complex Jacobi; src/complex_factor.h).
-// Measured against Jacobi and Factored on tori of 10 k to 1 M faces and the 1.2 M-face bunny at
-// the default and at 16x the default (bench/results): fewer iterations than Jacobi on every
-// mesh and strength, and 1.3-2x less CPU time than Factored on the meshes >= 1 M faces, so it
-// replaces both there. With soft weights Automatic keeps the Jacobi trial and Factored.
+// Measured against Jacobi and Factored (bench/results/issue12/preconditioners.md): fewer
+// iterations than Jacobi on the 10 k and 100 k tori at time steps 1 and 22.5 (curvature) and on
+// the 1 M torus and the 1.2 M-face bunny at the defaults, and 1.2-1.9x less CPU time than
+// Factored (the cheaper of the old paths) on those two, so it replaces both there. With soft
+// weights Automatic keeps the Jacobi trial and Factored.
 #pragma once
 
 #include "fairing/fairing.h"
