@@ -489,20 +489,23 @@ double remaining_iterations(const std::array<bool, 3>& active, const Column3& st
     return remaining;
 }
 
-}  // namespace
+// r = b - A x on the free rows (0 on the fixed ones), returning its norms; q and scratch are
+// work space.
+Column3 true_residual(const LinearSystem& system, const Positions& b, const Positions& x,
+                      ResidualNorm norm, Positions& r, Positions& q, Positions& scratch) {
+    const char* f = system.free.data();
+    system.apply(x, q, scratch);
+    detail::for_each_row(system.op->size(), system.op->threads, [&](int i) {
+        for (int c = 0; c < 3; ++c) r(i, c) = f[i] ? b(i, c) - q(i, c) : 0.0;
+    });
+    return column_norms(r, system.free, norm, system.op->threads);
+}
 
-SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& settings) {
+// Jacobi CG, or flexible CG with the factored preconditioner (both for L^2 with soft weights, or
+// when asked for), until the true residual meets the goal.
+SolveStats solve_real(const LinearSystem& system, Positions& x, const Positions& b,
+                      const Column3& scale, const Column3& goal, const SolveSettings& settings) {
     const int n = system.op->size();
-    const int threads = system.op->threads;
-    const std::vector<char>& free = system.free;
-    const char* f = free.data();
-    Positions b(n, 3);
-    const Column3 scale = right_hand_side(system, x, settings.norm, b);
-    Column3 goal;
-    for (int c = 0; c < 3; ++c) goal[c] = scale[c] > 0 ? settings.tolerance * scale[c] : 0.0;
-    if (settings.preconditioner == Preconditioner::Automatic && detail::complex_factor_applies(system))
-        return solve_complex(system, x, b, scale, goal, settings);
-
     // scratch holds M^-1 K p between the two products of an L^2 system (and the inner solves'
     // first solution); first-order solves never touch it.
     Positions r(n, 3), p(n, 3), q(n, 3), scratch(system.order == 2 ? n : 0, 3);
@@ -527,11 +530,7 @@ SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& 
     std::array<bool, 3> active{false, false, false};
     Column3 rn{0, 0, 0};
     for (int restart = 0;; ++restart) {
-        system.apply(x, q, scratch);
-        detail::for_each_row(n, threads, [&](int i) {
-            for (int c = 0; c < 3; ++c) r(i, c) = f[i] ? b(i, c) - q(i, c) : 0.0;
-        });
-        rn = column_norms(r, free, settings.norm, threads);
+        rn = true_residual(system, b, x, settings.norm, r, q, scratch);
         for (int c = 0; c < 3; ++c) {
             check_finite(rn[c], stats.iterations);
             active[c] = rn[c] > goal[c];
@@ -570,6 +569,18 @@ SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& 
     stats.residual = relative(rn, scale);
     stats.converged = !any(active);
     return stats;
+}
+
+}  // namespace
+
+SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& settings) {
+    Positions b(system.op->size(), 3);
+    const Column3 scale = right_hand_side(system, x, settings.norm, b);
+    Column3 goal;
+    for (int c = 0; c < 3; ++c) goal[c] = scale[c] > 0 ? settings.tolerance * scale[c] : 0.0;
+    if (settings.preconditioner == Preconditioner::Automatic && detail::complex_factor_applies(system))
+        return solve_complex(system, x, b, scale, goal, settings);
+    return solve_real(system, x, b, scale, goal, settings);
 }
 
 }  // namespace fairing
