@@ -205,6 +205,68 @@ for m in meshes:
                         bt["method"].replace("MeshLab Taubin Smooth ", "Taubin ") if bt else "—", g(vol)),
                     "≤ 1; ≤ 1e-4 %", ok))
 
+# g. issue 12: the default L² step as cheap as a first-order step (engine direct, fastest of N)
+def eng(mesh, op, order, ts, steps=1, threads=1, freeze=False):
+    for r in R:
+        if (r["mesh"] == mesh and r["group"] == "issue12" and r.get("op") == op and r.get("order") == order
+                and abs(r.get("time_step", -1) - ts) < 1e-9 * max(1, ts) and r.get("steps") == steps
+                and r.get("threads") == threads and bool(r.get("freeze")) == freeze):
+            return r
+    return None
+
+
+def its(r):
+    return "—" if r is None else str(r.get("cg_iterations"))
+
+
+def cpu(r):
+    """One-thread rows: process CPU time of fair() (the shared machine's waits left out)."""
+    return None if r is None else r.get("cpu_seconds", r["seconds"])
+
+
+def wall(r):
+    return None if r is None else r["seconds"]
+
+
+for m in meshes:
+    if not any(r["mesh"] == m and r["group"] == "issue12" for r in R):
+        continue
+    taubin = get(m, "MeshLab Taubin Smooth ×10", "issue12")
+    for op, ts in ((("umbrella", 10.0), ("scale-dependent", 2.5), ("curvature", 22.5))):
+        l2, l1, two = eng(m, op, 2, ts), eng(m, op, 1, ts ** 0.5), eng(m, op, 2, ts, threads=2)
+        x = q(cpu(l2), cpu(l1))
+        targets.append(("g. %s L² ts=%g / L ts=%.3g (equal cutoff), 1 thread, CPU s" % (op, ts, ts ** 0.5), m,
+                        "%s (%s s / %s s; iterations %s / %s)" % (f(x, 2), f(cpu(l2)), f(cpu(l1)), its(l2), its(l1)),
+                        "≤ 1.3", le(x, 1.3)))
+        x = q(wall(l2), wall(taubin))
+        targets.append(("g. %s L² ts=%g (engine wall) / MeshLab Taubin Smooth ×10 (applyFilter)" % (op, ts), m,
+                        "%s (%s s / %s s)" % (f(x, 2), f(wall(l2)), f(wall(taubin))), "< 1",
+                        None if x is None else x < 1))
+        x = q(wall(l2), wall(two))
+        targets.append(("g. %s L² ts=%g: 1 thread / 2 threads, wall" % (op, ts), m,
+                        "%s (%s s / %s s)" % (f(x, 2), f(wall(l2)), f(wall(two))), "≥ 1.6", ge(x, 1.6)))
+    s1 = eng(m, "curvature", 1, 22.5 ** 0.5)
+    strong = eng(m, "curvature", 1, 16 * 22.5 ** 0.5)
+    x = q(cpu(strong), cpu(s1))
+    targets.append(("g. curvature L: time(16 × %.3g) / time(%.3g), CPU s" % (22.5 ** 0.5, 22.5 ** 0.5), m,
+                    "%s (%s s / %s s; iterations %s / %s)" % (f(x, 2), f(cpu(strong)), f(cpu(s1)), its(strong), its(s1)),
+                    "≤ 1.5", le(x, 1.5)))
+    unit, strong = eng(m, "curvature", 2, 22.5), eng(m, "curvature", 2, 360.0)
+    x = q(cpu(strong), cpu(unit))
+    targets.append(("g. curvature L²: time(360) / time(22.5), CPU s", m,
+                    "%s (%s s / %s s; iterations %s / %s)" % (f(x, 2), f(cpu(strong)), f(cpu(unit)), its(strong), its(unit)),
+                    "≤ 1.5", le(x, 1.5)))
+    ten = eng(m, "curvature", 2, 22.5, steps=10, freeze=True)
+    x = q(cpu(ten), cpu(unit))
+    targets.append(("g. curvature L² ts=22.5: 10 steps, frozen operator / 1 step, CPU s", m,
+                    "%s (%s s / %s s; iterations %s / %s)" % (f(x, 2), f(cpu(ten)), f(cpu(unit)), its(ten), its(unit)),
+                    "≤ 3", le(x, 3)))
+    for op, ts in ((("umbrella", 10.0), ("scale-dependent", 2.5), ("curvature", 22.5))):
+        r = eng(m, op, 2, ts)
+        x = r and r.get("extra_bytes_per_vertex")
+        targets.append(("g. engine extra peak memory at the default (%s L² ts=%g), bytes / vertex" % (op, ts), m,
+                        f(x, 0), "≤ 150", le(x, 150)))
+
 # ------------------------------------------------------------------ results.md
 out = []
 w = out.append

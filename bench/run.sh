@@ -4,6 +4,7 @@
 # ScaleDependent Laplacian and Taubin smoothing, at equal diffusion time (bench/README.md).
 #
 #   bench/run.sh [--quick] [--no-micro] [--no-install] [--only NAMES] [--results DIR] [--repeat N]
+#                [--issue12-only]
 #
 #   --quick        skip the >= 1M-face meshes (jittered torus 1M, bunny Loop x2 1.2M)
 #   --no-micro     skip the Google Benchmark micro-benchmarks (bench/results/micro.md; target b)
@@ -30,6 +31,7 @@ while [ $# -gt 0 ]; do
     --no-install) install=0 ;;
     --no-micro) micro=0 ;;
     --quick) args+=(--quick) ;;
+    --issue12-only) args+=(--issue12-only) ;;
     --only|--repeat) [ $# -ge 2 ] || { echo "run.sh: $1 needs a value" >&2; exit 2; }
       args+=("$1" "$2"); shift ;;
     --results) [ $# -ge 2 ] || { echo "run.sh: $1 needs a value" >&2; exit 2; }

@@ -38,6 +38,9 @@ p.add_argument("--micro-json", default="", help="Google Benchmark JSON of this r
 p.add_argument("--repeat", type=int, default=3, help="meshlab_filter_timer --repeat (median)")
 p.add_argument("--cli-repeat", type=int, default=3,
                help="runs of the CLI rows that targets a, c, d compare (the fastest is kept)")
+p.add_argument("--issue12-only", action="store_true",
+               help="run only issue 12's rows (engine direct through fairing-bench-tool, MeshLab's "
+               "Taubin Smooth x10 when the filter timer is built) on the meshes of >= 500 k vertices")
 a = p.parse_args()
 REPEAT = a.cli_repeat
 only = [x for x in a.only.split(",") if x]
@@ -264,6 +267,47 @@ def engine_memory(m, ts):
                   dict(extra_bytes_per_vertex=j["extra_peak_bytes_per_vertex"], cg_iterations=j["cg_iterations"]), False)
 
 
+# Issue 12: each filter's default L² step against a first-order step of the same operator at
+# equal cutoff (the mode damped by 1/2: time step sqrt(t) for L where L² has t), threads, strength,
+# a frozen operator, memory. Engine direct (fair() in fairing-bench-tool, the same code the CLI
+# and the plugin call), fastest of REPEAT runs. One-thread rows are compared by the process CPU
+# time of fair() (the machine is shared: wall time counts waits for a core too), the thread rows by
+# wall time.
+ISSUE12_DEFAULTS = (("umbrella", 10.0), ("scale-dependent", 2.5), ("curvature", 22.5))
+
+
+def engine(m, op, order, ts, steps=1, threads=1, freeze=False, preconditioner="auto"):
+    out = os.path.join(runs_dir, "%s_tool.ply" % m["name"])
+    args = [tool, "fair", m["noisy"], out, op, str(order), repr(ts), str(steps), "threads=%d" % threads,
+            "preconditioner=" + preconditioner] + (["freeze=1"] if freeze else [])
+    best = None
+    for _ in range(REPEAT):
+        o, _, wall, rss = run(args, env=dict(os.environ, OMP_NUM_THREADS=str(threads)))
+        j = jline(o)
+        key = "cpu_seconds" if threads == 1 else "seconds_engine"
+        if best is None or j[key] < best[0][key]:
+            best = (j, wall, rss)
+    j, wall, rss = best
+    name = "engine %s L%s ts=%g%s%s%s" % (op, "²" if order == 2 else "", ts, ", %d steps" % steps if steps > 1 else "",
+                                        ", frozen" if freeze else "", ", %d threads" % threads if threads > 1 else "")
+    return record(m, name, "issue12", None, j["seconds_engine"], wall, rss,
+                  dict(op=op, order=order, time_step=ts, steps=steps, threads=threads, freeze=freeze,
+                       cg_iterations=j["cg_iterations"], inner_iterations=j.get("inner_iterations"),
+                       cpu_seconds=j.get("cpu_seconds"), extra_bytes_per_vertex=j["extra_peak_bytes_per_vertex"]), False)
+
+
+def issue12(m):
+    for op, ts in ISSUE12_DEFAULTS:
+        engine(m, op, 2, ts)
+        engine(m, op, 1, math.sqrt(ts))
+        engine(m, op, 2, ts, threads=2)
+    engine(m, "curvature", 1, 16 * math.sqrt(22.5))
+    engine(m, "curvature", 2, 16 * 22.5)
+    engine(m, "curvature", 2, 22.5, steps=10, freeze=True)
+    if os.path.exists(timer):
+        meshlab(m, "issue12", "MeshLab Taubin Smooth ×10", taubin_mlx(10), metrics=False)
+
+
 def micro_records():
     """This run's Google Benchmark JSON (run.sh --micro), kept in runs.jsonl for the targets table."""
     if not a.micro_json or not os.path.exists(a.micro_json):
@@ -287,6 +331,7 @@ def write_results():
             git=subprocess.run(["git", "-C", root, "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip(),
             dirty=bool(subprocess.run(["git", "-C", root, "status", "--porcelain", "fairing"], capture_output=True, text=True).stdout.strip()),
             command="bench/run.sh" + (" --quick" if a.quick else "") + (" --only " + a.only if only else "")
+                    + (" --issue12-only" if a.issue12_only else "")
                     + ("" if a.micro_json else " --no-micro") + (" --repeat %d" % a.repeat if a.repeat != 1 else ""),
             repeat=a.repeat, cli_repeat=REPEAT, complete=done)
   with open(os.path.join(results, "runs.jsonl"), "w") as f:
@@ -306,7 +351,7 @@ load0 = os.getloadavg()
 micro = micro_records()
 done = False
 t = T_DIFF
-for mi, m in enumerate(meshes):
+for mi, m in enumerate(meshes if not a.issue12_only else []):
     log("mesh %s: %d vertices, %d faces, mean edge %.4g" % (m["name"], m["vertices"], m["faces"], m["mean_edge"]))
     h2 = m["mean_edge"] ** 2
     big = m["faces"] > 500000
@@ -342,5 +387,13 @@ for mi, m in enumerate(meshes):
     for steps in ((10, 30) if big else (10, 30, 100)):
         meshlab(m, "denoise", "MeshLab Taubin Smooth ×%d" % steps, taubin_mlx(steps))
     engine_memory(m, 6 * t)  # target e, memory
+    if m["vertices"] >= 500000:
+        issue12(m)
     done = mi + 1 == len(meshes)
     write_results()
+if a.issue12_only:
+    for mi, m in enumerate(meshes):
+        if m["vertices"] >= 500000:
+            issue12(m)
+        done = mi + 1 == len(meshes)
+        write_results()

@@ -4,7 +4,9 @@
 
 #include "fairing/operators.h"
 
+#include <algorithm>
 #include <array>
+#include <vector>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -55,38 +57,72 @@ inline void k_row(int i, const double* xs, const int* start, const int* column,
     }
 }
 
+// Rows per block of the deterministic sums below. Each block is summed in row order and the
+// blocks' partial sums are then added in block order, so a sum has the same bits whatever the
+// number of threads (OpenMP's reduction clause adds per-thread partials, whose split depends on
+// it). The results of fair() are so bit-identical on any thread count.
+constexpr int kSumBlock = 4096;
+
+// Fixed-order reduction over rows [0, n): fn(i, a) adds row i's share to a[0..N-1] (a starts at
+// zero in every block); combine(total, part) folds one block's partials into the total, in
+// block order.
+template <int N, class RowFn, class Combine>
+std::array<double, N> blocked_reduce(int n, int threads, RowFn fn, Combine combine) {
+    const int blocks = (n + kSumBlock - 1) / kSumBlock;
+    std::vector<std::array<double, N>> partial(static_cast<std::size_t>(blocks));
+    (void)threads;
+    FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1))
+    for (int b = 0; b < blocks; ++b) {
+        std::array<double, N> a{};
+        const int end = std::min(n, (b + 1) * kSumBlock);
+        for (int i = b * kSumBlock; i < end; ++i) fn(i, a.data());
+        partial[static_cast<std::size_t>(b)] = a;
+    }
+    std::array<double, N> total{};
+    for (const auto& part : partial) combine(total, part);
+    return total;
+}
+
+// The same with every entry summed.
+template <int N, class RowFn>
+std::array<double, N> blocked_sum(int n, int threads, RowFn fn) {
+    return blocked_reduce<N>(n, threads, fn,
+                             [](std::array<double, N>& total, const std::array<double, N>& part) {
+                                 for (int k = 0; k < N; ++k) total[k] += part[k];
+                             });
+}
+
 // Calls fn(i, s0, s1, s2, a) for every row i with (s0, s1, s2) = (K x)_i, rows split over
 // op.threads threads; fn only writes row i of its outputs and may add row i's share of a sum to
-// a[0..2], whose totals are returned (fusing a dot product into the product saves a pass over
-// the vectors).
+// a[0..2] (fresh zeros per row), whose totals are returned (fusing a dot product into the product saves a pass over
+// the vectors). The sums are in a fixed order (blocked_sum).
 template <class RowFn>
 std::array<double, 3> sum_over_k_rows(const SparseOperator& op, const Positions& x, RowFn fn) {
-    const int n = op.size();
     const double* xs = x.data();
     const int* start = op.row_start.data();
     const int* column = op.column.data();
     const double* weight = op.weight.data();
-    const int threads = op.threads;
-    (void)threads;
-    double a0 = 0, a1 = 0, a2 = 0;
-    FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1) \
-                   reduction(+ : a0, a1, a2))
-    for (int i = 0; i < n; ++i) {
+    return blocked_sum<3>(op.size(), op.threads, [&](int i, double* a) {
         double s0, s1, s2;
         k_row(i, xs, start, column, weight, s0, s1, s2);
-        double a[3] = {0, 0, 0};
-        fn(i, s0, s1, s2, a);
-        a0 += a[0];
-        a1 += a[1];
-        a2 += a[2];
-    }
-    return {a0, a1, a2};
+        double row[3] = {0, 0, 0};
+        fn(i, s0, s1, s2, row);
+        a[0] += row[0];
+        a[1] += row[1];
+        a[2] += row[2];
+    });
 }
 
 // The same without a sum: fn(i, s0, s1, s2).
 template <class RowFn>
 void for_each_k_row(const SparseOperator& op, const Positions& x, RowFn fn) {
-    sum_over_k_rows(op, x, [&fn](int i, double s0, double s1, double s2, double*) {
+    const double* xs = x.data();
+    const int* start = op.row_start.data();
+    const int* column = op.column.data();
+    const double* weight = op.weight.data();
+    for_each_row(op.size(), op.threads, [&](int i) {
+        double s0, s1, s2;
+        k_row(i, xs, start, column, weight, s0, s1, s2);
         fn(i, s0, s1, s2);
     });
 }

@@ -145,6 +145,113 @@ double mean_edge_length(const HalfEdgeMesh& mesh, const Positions& positions, in
     return mean_of_chunks(sum, count);
 }
 
+namespace {
+
+// Cotangents of the corners opposite each half-edge of this thread's share of the faces (eq. 14),
+// and twice their area (into twice_area, one thread per face) or their area added to their
+// vertices (into area, one thread only); faces of zero area, which the paper says to skip
+// (section 5.4), get zeros and are counted, as are needles (|cot| > 1e4).
+void cotangent_pass(const HalfEdgeMesh& mesh, const Positions& positions, const detail::Team& team,
+                    double* cot_opposite, double* twice_area, double* area, long long& zero_area,
+                    long long& needles) {
+    const std::vector<Triangle>& faces = mesh.faces();
+    const int num_faces = mesh.num_faces();
+    for (int f = team.begin(num_faces), f1 = team.end(num_faces); f < f1; ++f) {
+        const Triangle& t = faces[f];
+        const Vec3 p[3] = {detail::row(positions, t[0]), detail::row(positions, t[1]),
+                           detail::row(positions, t[2])};
+        if (detail::is_zero_area(p[0], p[1], p[2])) {
+            ++zero_area;
+            for (int k = 0; k < 3; ++k) cot_opposite[3 * f + k] = 0;
+            if (twice_area) twice_area[f] = 0;
+            continue;
+        }
+        const double twice = (p[1] - p[0]).cross(p[2] - p[0]).norm();
+        double largest_cot = 0;
+        for (int k = 0; k < 3; ++k) {
+            // Half-edge 3f+k runs p[k] -> p[k+1]; its opposite corner is p[k+2].
+            const Vec3& c = p[(k + 2) % 3];
+            const Vec3 u = p[k] - c, v = p[(k + 1) % 3] - c;
+            cot_opposite[3 * f + k] = u.dot(v) / twice;
+            largest_cot = std::max(largest_cot, std::abs(cot_opposite[3 * f + k]));
+        }
+        if (largest_cot > 1e4) ++needles;
+        if (twice_area) twice_area[f] = twice;
+        else if (area)
+            for (int k = 0; k < 3; ++k) area[t[k]] += 0.5 * twice;
+    }
+}
+
+// Area of the faces around a vertex, added in increasing face order (so the same on any number
+// of threads), from the leaving faces of its row's entries (see assemble); star is work space.
+double star_area(const HalfEdgeMesh& mesh, const int* leaving_face, int entries,
+                 const double* twice_area, std::vector<int>& star) {
+    star.clear();
+    for (int k = 0; k < entries; ++k) {
+        const int f = leaving_face[k];
+        if (f >= 0) {
+            star.push_back(f);
+        } else if (f <= -2) {
+            star.push_back(HalfEdgeMesh::face(-2 - f));
+            star.push_back(HalfEdgeMesh::face(mesh.twin(-2 - f)));
+        }
+    }
+    sort_small(star);
+    double sum = 0;
+    for (int f : star) sum += 0.5 * twice_area[f];
+    return sum;
+}
+
+// M_ii of row v: eq. 7, 11 or 14, or section 5.5 when normalized (the area of the curvature
+// flow from `area`, or gathered from the row's leaving faces when gather_area). The
+// scale-dependent row's weights, |e| until now, become 1/|e|.
+double vertex_mass(Operator op, bool normalized, bool gather_area, int v, SparseOperator& result,
+                   const double* area, const HalfEdgeMesh& mesh, const int* leaving_face,
+                   const double* twice_area, std::vector<int>& star) {
+    const int begin = result.row_start[v], end = result.row_start[v + 1];
+    double mass = 0;
+    if (op == Operator::ScaleDependent) {
+        for (int k = begin; k < end; ++k) {
+            mass += result.weight[k];
+            result.weight[k] = 1.0 / result.weight[k];
+        }
+        mass *= 0.5;  // E/2, eq. 11
+    }
+    if (normalized) {  // section 5.5
+        mass = 0;
+        for (int k = begin; k < end; ++k) mass += result.weight[k];
+    } else if (op == Operator::Umbrella) {
+        mass = end - begin;  // the valence
+    } else if (op == Operator::CurvatureFlow && !gather_area) {
+        mass = 4.0 * area[v];  // 4A, eq. 14
+    } else if (op == Operator::CurvatureFlow) {
+        mass = 4.0 * star_area(mesh, leaving_face + begin, end - begin, twice_area, star);
+    }
+    return mass;
+}
+
+// Drops the edges of massless vertices so that K stays symmetric and the system stays positive
+// definite (their neighbours then see them as missing neighbours). Rare: serial.
+void drop_massless(SparseOperator& result) {
+    const int n = result.size();
+    int kept = 0;
+    for (int v = 0; v < n; ++v) {
+        const int begin = result.row_start[v], end = result.row_start[v + 1];
+        result.row_start[v] = kept;
+        if (result.mass[v] == 0) continue;
+        for (int k = begin; k < end; ++k)
+            if (result.mass[result.column[k]] != 0) {
+                result.column[kept] = result.column[k];
+                result.weight[kept++] = result.weight[k];
+            }
+    }
+    result.row_start[n] = kept;
+    result.column.resize(kept);
+    result.weight.resize(kept);
+}
+
+}  // namespace
+
 // One parallel region: per-face cotangents, the rows of K by a counting sort on the edges' end
 // points (each edge weighed once, in increasing order, where it is scattered), then the mass
 // row by row. Each vertex so adds its terms in the order of the serial loops (edges by
@@ -186,31 +293,10 @@ SparseOperator assemble(Operator op, const HalfEdgeMesh& mesh, const Positions& 
                    reduction(+ : zero_area, needles, floored))
     {
         const detail::Team team = detail::this_team();
-        const int f1 = curvature ? team.end(num_faces) : 0;
-        for (int f = team.begin(num_faces); f < f1; ++f) {
-            const Triangle& t = faces[f];
-            const Vec3 p[3] = {detail::row(positions, t[0]), detail::row(positions, t[1]),
-                               detail::row(positions, t[2])};
-            if (detail::is_zero_area(p[0], p[1], p[2])) {
-                ++zero_area;
-                for (int k = 0; k < 3; ++k) cot_opposite[3 * f + k] = 0;
-                if (gather_area) twice_area[f] = 0;
-                continue;
-            }
-            const double twice = (p[1] - p[0]).cross(p[2] - p[0]).norm();
-            double largest_cot = 0;
-            for (int k = 0; k < 3; ++k) {
-                // Half-edge 3f+k runs p[k] -> p[k+1]; its opposite corner is p[k+2].
-                const Vec3& c = p[(k + 2) % 3];
-                const Vec3 u = p[k] - c, v = p[(k + 1) % 3] - c;
-                cot_opposite[3 * f + k] = u.dot(v) / twice;
-                largest_cot = std::max(largest_cot, std::abs(cot_opposite[3 * f + k]));
-            }
-            if (largest_cot > 1e4) ++needles;
-            if (gather_area) twice_area[f] = twice;
-            else if (area_mass)
-                for (int k = 0; k < 3; ++k) area[t[k]] += 0.5 * twice;
-        }
+        if (curvature)
+            cotangent_pass(mesh, positions, team, cot_opposite.get(),
+                           gather_area ? twice_area.get() : nullptr,
+                           area_mass && !gather_area ? area.data() : nullptr, zero_area, needles);
         double mean_edge = 0;
         if (scale_dependent) {
             edge_length_chunks(mesh, positions, length_sum.data(), length_count.data());
@@ -247,38 +333,9 @@ SparseOperator assemble(Operator op, const HalfEdgeMesh& mesh, const Positions& 
         std::vector<int> star;  // faces around the vertex, increasing
         FAIRING_PRAGMA(omp for schedule(static) reduction(+ : massless))
         for (int v = 0; v < n; ++v) {
-            const int begin = result.row_start[v], end = result.row_start[v + 1];
-            double mass = 0;
-            if (scale_dependent) {
-                for (int k = begin; k < end; ++k) {
-                    mass += result.weight[k];
-                    result.weight[k] = 1.0 / result.weight[k];
-                }
-                mass *= 0.5;  // E/2, eq. 11
-            }
-            if (normalized) {  // section 5.5
-                mass = 0;
-                for (int k = begin; k < end; ++k) mass += result.weight[k];
-            } else if (op == Operator::Umbrella) {
-                mass = end - begin;  // the valence
-            } else if (curvature && !gather_area) {
-                mass = 4.0 * area[v];  // 4A, eq. 14
-            } else if (curvature) {
-                star.clear();
-                for (int k = begin; k < end; ++k) {
-                    const int f = leaving_face[k];
-                    if (f >= 0) {
-                        star.push_back(f);
-                    } else if (f <= -2) {
-                        star.push_back(HalfEdgeMesh::face(-2 - f));
-                        star.push_back(HalfEdgeMesh::face(mesh.twin(-2 - f)));
-                    }
-                }
-                sort_small(star);
-                double star_area = 0;
-                for (int f : star) star_area += 0.5 * twice_area[f];
-                mass = 4.0 * star_area;
-            }
+            double mass = vertex_mass(op, normalized, gather_area, v, result,
+                                      area.empty() ? nullptr : area.data(), mesh,
+                                      leaving_face.get(), twice_area.get(), star);
             // A vertex without mass cannot take part; its edges are dropped below.
             if (!(mass > 0) && !mesh.is_isolated(v)) {
                 mass = 0;
@@ -292,24 +349,7 @@ SparseOperator assemble(Operator op, const HalfEdgeMesh& mesh, const Positions& 
     r.floored_edges = static_cast<int>(floored);
     r.massless_vertices = static_cast<int>(massless);
 
-    // Drop the edges of massless vertices so that K stays symmetric and the system stays
-    // positive definite (their neighbours then see them as missing neighbours). Rare: serial.
-    if (massless > 0) {
-        int kept = 0;
-        for (int v = 0; v < n; ++v) {
-            const int begin = result.row_start[v], end = result.row_start[v + 1];
-            result.row_start[v] = kept;
-            if (result.mass[v] == 0) continue;
-            for (int k = begin; k < end; ++k)
-                if (result.mass[result.column[k]] != 0) {
-                    result.column[kept] = result.column[k];
-                    result.weight[kept++] = result.weight[k];
-                }
-        }
-        result.row_start[n] = kept;
-        result.column.resize(kept);
-        result.weight.resize(kept);
-    }
+    if (massless > 0) drop_massless(result);
     return result;
 }
 

@@ -1,5 +1,6 @@
 #include "fairing/solver.h"
 
+#include "complex_factor.h"
 #include "kernels.h"
 
 #include <algorithm>
@@ -13,49 +14,39 @@ namespace {
 
 using Column3 = std::array<double, 3>;
 
-// Sums (L2: of squares, then the root) or maxima (L-infinity) of |v| per column over the free
-// rows: one pass, split over `threads`.
+// Norm per column over the free rows, sums in a fixed order (detail::blocked_reduce).
 Column3 column_norms(const Positions& v, const std::vector<char>& free, ResidualNorm norm,
                      int threads) {
-    const int n = static_cast<int>(v.rows());
     const double* d = v.data();
     const char* f = free.data();
-    double s0 = 0, s1 = 0, s2 = 0, m0 = 0, m1 = 0, m2 = 0;
-    (void)threads;
-    FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1) \
-                   reduction(+ : s0, s1, s2) reduction(max : m0, m1, m2))
-    for (int i = 0; i < n; ++i) {
-        if (!f[i]) continue;
-        const double a0 = d[3 * i], a1 = d[3 * i + 1], a2 = d[3 * i + 2];
-        s0 += a0 * a0;
-        s1 += a1 * a1;
-        s2 += a2 * a2;
-        m0 = std::max(m0, std::abs(a0));
-        m1 = std::max(m1, std::abs(a1));
-        m2 = std::max(m2, std::abs(a2));
-    }
-    if (norm == ResidualNorm::L2) return {std::sqrt(s0), std::sqrt(s1), std::sqrt(s2)};
-    return {m0, m1, m2};
+    const int n = static_cast<int>(v.rows());
+    if (norm == ResidualNorm::LInfinity)
+        return detail::blocked_reduce<3>(
+            n, threads,
+            [=](int i, double* a) {
+                if (!f[i]) return;
+                for (int c = 0; c < 3; ++c) a[c] = std::max(a[c], std::abs(d[3 * i + c]));
+            },
+            [](Column3& total, const Column3& part) {
+                for (int c = 0; c < 3; ++c) total[c] = std::max(total[c], part[c]);
+            });
+    const Column3 s = detail::blocked_sum<3>(n, threads, [=](int i, double* a) {
+        if (!f[i]) return;
+        for (int c = 0; c < 3; ++c) a[c] += d[3 * i + c] * d[3 * i + c];
+    });
+    return {std::sqrt(s[0]), std::sqrt(s[1]), std::sqrt(s[2])};
 }
 
 // Per column sum over the free rows of a_i b_i.
 Column3 column_dots(const Positions& a, const Positions& b, const std::vector<char>& free,
                     int threads) {
-    const int n = static_cast<int>(a.rows());
     const double* pa = a.data();
     const double* pb = b.data();
     const char* f = free.data();
-    double s0 = 0, s1 = 0, s2 = 0;
-    (void)threads;
-    FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1) \
-                   reduction(+ : s0, s1, s2))
-    for (int i = 0; i < n; ++i) {
-        if (!f[i]) continue;
-        s0 += pa[3 * i] * pb[3 * i];
-        s1 += pa[3 * i + 1] * pb[3 * i + 1];
-        s2 += pa[3 * i + 2] * pb[3 * i + 2];
-    }
-    return {s0, s1, s2};
+    return detail::blocked_sum<3>(static_cast<int>(a.rows()), threads, [=](int i, double* s) {
+        if (!f[i]) return;
+        for (int c = 0; c < 3; ++c) s[c] += pa[3 * i + c] * pb[3 * i + c];
+    });
 }
 
 }  // namespace
@@ -168,48 +159,46 @@ struct UpdateSums {
 UpdateSums update_iterate(const LinearSystem& system, Positions& x, Positions& r,
                           const Positions& p, const Positions& q, const double alpha[3],
                           ResidualNorm norm, const double* inv) {
-    const int n = system.op->size();
-    const int threads = system.op->threads;
-    (void)threads;
     const char* f = system.free.data();
     double* xs = x.data();
     double* rs = r.data();
     const double* ps = p.data();
     const double* qs = q.data();
     const double a0 = alpha[0], a1 = alpha[1], a2 = alpha[2];
-    double n0 = 0, n1 = 0, n2 = 0, m0 = 0, m1 = 0, m2 = 0, z0 = 0, z1 = 0, z2 = 0;
-    FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) \
-                   if(threads > 1) reduction(+ : n0, n1, n2, z0, z1, z2) \
-                   reduction(max : m0, m1, m2))
-    for (int i = 0; i < n; ++i) {
-        if (!f[i]) continue;
-        double* xi = xs + 3 * i;
-        double* ri = rs + 3 * i;
-        const double* pi = ps + 3 * i;
-        const double* qi = qs + 3 * i;
-        xi[0] += a0 * pi[0];
-        xi[1] += a1 * pi[1];
-        xi[2] += a2 * pi[2];
-        ri[0] -= a0 * qi[0];
-        ri[1] -= a1 * qi[1];
-        ri[2] -= a2 * qi[2];
-        n0 += ri[0] * ri[0];
-        n1 += ri[1] * ri[1];
-        n2 += ri[2] * ri[2];
-        m0 = std::max(m0, std::abs(ri[0]));
-        m1 = std::max(m1, std::abs(ri[1]));
-        m2 = std::max(m2, std::abs(ri[2]));
-        const double w = inv ? inv[i] : 0.0;
-        z0 += ri[0] * ri[0] * w;
-        z1 += ri[1] * ri[1] * w;
-        z2 += ri[2] * ri[2] * w;
-    }
-    UpdateSums sums;
-    sums.residual = norm == ResidualNorm::L2
-                        ? Column3{std::sqrt(n0), std::sqrt(n1), std::sqrt(n2)}
-                        : Column3{m0, m1, m2};
-    sums.rz = {z0, z1, z2};
-    return sums;
+    const bool l2 = norm == ResidualNorm::L2;
+    // a[0..2]: squares (L2) or maxima of |r|; a[3..5]: r.J^-1 r.
+    const std::array<double, 6> sums = detail::blocked_reduce<6>(
+        system.op->size(), system.op->threads,
+        [=](int i, double* a) {
+            if (!f[i]) return;
+            double* xi = xs + 3 * i;
+            double* ri = rs + 3 * i;
+            const double* pi = ps + 3 * i;
+            const double* qi = qs + 3 * i;
+            xi[0] += a0 * pi[0];
+            xi[1] += a1 * pi[1];
+            xi[2] += a2 * pi[2];
+            ri[0] -= a0 * qi[0];
+            ri[1] -= a1 * qi[1];
+            ri[2] -= a2 * qi[2];
+            const double w = inv ? inv[i] : 0.0;
+            for (int c = 0; c < 3; ++c) {
+                const double rr = ri[c] * ri[c];
+                a[c] = l2 ? a[c] + rr : std::max(a[c], std::abs(ri[c]));
+                a[3 + c] += rr * w;
+            }
+        },
+        [l2](std::array<double, 6>& total, const std::array<double, 6>& part) {
+            for (int c = 0; c < 3; ++c) {
+                total[c] = l2 ? total[c] + part[c] : std::max(total[c], part[c]);
+                total[3 + c] += part[3 + c];
+            }
+        });
+    UpdateSums out;
+    out.residual = l2 ? Column3{std::sqrt(sums[0]), std::sqrt(sums[1]), std::sqrt(sums[2])}
+                      : Column3{sums[0], sums[1], sums[2]};
+    out.rz = {sums[3], sums[4], sums[5]};
+    return out;
 }
 
 // Iterations of Jacobi-preconditioned CG on the free rows, from x with r = b - A x (r zero on
@@ -226,17 +215,13 @@ int jacobi_cg(const LinearSystem& system, const double* inv, Positions& x, Posit
     double* ps = p.data();
     double* rs = r.data();
     // p = z = J^-1 r, rz = r.z
-    double z0 = 0, z1 = 0, z2 = 0;
-    FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1) \
-                   reduction(+ : z0, z1, z2))
-    for (int i = 0; i < n; ++i) {
+    Column3 rz = detail::blocked_sum<3>(n, threads, [=](int i, double* a) {
         const double s = f[i] ? inv[i] : 0.0;
-        for (int c = 0; c < 3; ++c) ps[3 * i + c] = rs[3 * i + c] * s;
-        z0 += rs[3 * i] * ps[3 * i];
-        z1 += rs[3 * i + 1] * ps[3 * i + 1];
-        z2 += rs[3 * i + 2] * ps[3 * i + 2];
-    }
-    Column3 rz{z0, z1, z2};
+        for (int c = 0; c < 3; ++c) {
+            ps[3 * i + c] = rs[3 * i + c] * s;
+            a[c] += rs[3 * i + c] * ps[3 * i + c];
+        }
+    });
     const auto converged = [&](int c) { return rn[c] <= goal[c]; };
 
     while (any(active) && done < cap) {
@@ -384,55 +369,146 @@ int factored_fcg(const LinearSystem& system, FactoredPreconditioner& preconditio
         double* pw = p.data();
         const double* zs = z.data();
         const double* rs = r.data();
-        double s0 = 0, s1 = 0, s2 = 0;
-        FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1) \
-                       reduction(+ : s0, s1, s2))
-        for (int i = 0; i < n; ++i) {
-            if (!f[i]) continue;
+        pr = detail::blocked_sum<3>(n, threads, [=](int i, double* a) {
+            if (!f[i]) return;
             for (int c = 0; c < 3; ++c) {
                 double& pc = pw[3 * i + c];
                 pc = keep[c] != 0 ? pc : zs[3 * i + c] + beta[c] * pc;
+                a[c] += pc * rs[3 * i + c];
             }
-            s0 += pw[3 * i] * rs[3 * i];
-            s1 += pw[3 * i + 1] * rs[3 * i + 1];
-            s2 += pw[3 * i + 2] * rs[3 * i + 2];
-        }
-        pr = {s0, s1, s2};
+        });
     }
     return done;
 }
 
-}  // namespace
-
-SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& settings) {
+// b = D x_old, and the norms that scale the stopping rule. The right-hand side actually solved
+// on the free rows includes the fixed values' coupling, b_f - A_fc x_c; its norm (or b's,
+// whichever is larger) is the scale. Without fixed rows the two are the same and the product is
+// skipped. q and scratch are work space.
+Column3 right_hand_side(const LinearSystem& system, const Positions& x, ResidualNorm norm,
+                        Positions& b) {
     const int n = system.op->size();
     const int threads = system.op->threads;
     const std::vector<char>& free = system.free;
-    const char* f = free.data();
     const double* d = system.diagonal.data();
+    detail::for_each_row(n, threads, [&](int i) { b.row(i) = d[i] * x.row(i); });
+    const Column3 norm_b = column_norms(b, free, norm, threads);
+    if (std::find(free.begin(), free.end(), 0) == free.end()) return norm_b;
+    Positions fixed_only = Positions::Zero(n, 3), q, scratch;
+    for (int i = 0; i < n; ++i)
+        if (!free[i]) fixed_only.row(i) = x.row(i);
+    system.apply(fixed_only, q, scratch);
+    fixed_only = b - q;
+    const Column3 norm_eb = column_norms(fixed_only, free, norm, threads);
+    Column3 scale;
+    for (int c = 0; c < 3; ++c) scale[c] = std::max(norm_b[c], norm_eb[c]);
+    return scale;
+}
+
+// Worst column of rn relative to the scale of the stopping rule.
+double relative(const Column3& rn, const Column3& scale) {
+    double worst = 0;
+    for (int c = 0; c < 3; ++c) worst = std::max(worst, scale[c] > 0 ? rn[c] / scale[c] : rn[c]);
+    return worst;
+}
+
+// SolveSettings::progress from residual norms: how far they have come down, on a log scale,
+// from the first ones seen to the goal.
+class Progress {
+public:
+    Progress(const SolveSettings& settings, const Column3& goal) : goal_(goal) {
+        if (settings.progress)
+            callback_ = [this, &settings](const Column3& rn) { settings.progress(fraction(rn)); };
+    }
+    void start(const Column3& rn) {
+        if (started_) return;
+        initial_ = rn;
+        started_ = true;
+    }
+    const std::function<void(const Column3&)>& callback() const { return callback_; }
+
+private:
+    double fraction(const Column3& now) const {
+        double worst = 1;
+        for (int c = 0; c < 3; ++c) {
+            if (!(now[c] > goal_[c]) || !(initial_[c] > goal_[c])) continue;
+            worst = std::min(worst,
+                             std::log(initial_[c] / now[c]) / std::log(initial_[c] / goal_[c]));
+        }
+        return std::max(0.0, worst);
+    }
+    Column3 goal_, initial_{0, 0, 0};
+    bool started_ = false;
+    std::function<void(const Column3&)> callback_;
+};
+
+// CG's recursively updated residual drifts from the true one on ill-conditioned systems (the
+// L^2 forms), so convergence is confirmed on the true residual, restarting from the current
+// iterate when it disagrees, at most this many times.
+constexpr int kMaxRestarts = 8;
+
+// Automatic, L^2 without soft weights (complex_factor.h): corrections by the complex solve until
+// the true L^2 residual meets the goal. Needs only b besides the complex solver's vectors.
+SolveStats solve_complex(const LinearSystem& system, Positions& x, const Positions& b,
+                         const Column3& scale, const Column3& goal, const SolveSettings& settings) {
+    SolveStats stats;
+    stats.complex_factor = true;
+    detail::ComplexFactorSolver solver(system);
+    Progress progress(settings, goal);
+    std::array<bool, 3> active{false, false, false};
+    Column3 rn{0, 0, 0};
+    for (int restart = 0;; ++restart) {
+        rn = solver.set_residual(b, x, settings.norm);
+        for (int c = 0; c < 3; ++c) {
+            check_finite(rn[c], stats.iterations);
+            active[c] = rn[c] > goal[c];
+        }
+        progress.start(rn);
+        if (!any(active) || restart == kMaxRestarts || stats.iterations >= settings.max_iterations)
+            break;
+        stats.iterations += solver.correct(x, goal, settings.norm,
+                                           settings.max_iterations - stats.iterations, active,
+                                           progress.callback());
+    }
+    stats.residual = relative(rn, scale);
+    stats.converged = !any(active);
+    return stats;
+}
+
+// Automatic's decision after the Jacobi trial: the iterations still needed at the trial's
+// geometric rate (from `start` to `rn` in `done` iterations), worst active column.
+double remaining_iterations(const std::array<bool, 3>& active, const Column3& start,
+                            const Column3& rn, const Column3& goal, int done) {
+    double remaining = 0;
+    for (int c = 0; c < 3; ++c) {
+        if (!active[c]) continue;
+        if (!(rn[c] < start[c])) return INFINITY;
+        const double rate = std::log(rn[c] / start[c]) / done;
+        remaining = std::max(remaining, std::log(goal[c] / rn[c]) / rate);
+    }
+    return remaining;
+}
+
+// r = b - A x on the free rows (0 on the fixed ones), returning its norms; q and scratch are
+// work space.
+Column3 true_residual(const LinearSystem& system, const Positions& b, const Positions& x,
+                      ResidualNorm norm, Positions& r, Positions& q, Positions& scratch) {
+    const char* f = system.free.data();
+    system.apply(x, q, scratch);
+    detail::for_each_row(system.op->size(), system.op->threads, [&](int i) {
+        for (int c = 0; c < 3; ++c) r(i, c) = f[i] ? b(i, c) - q(i, c) : 0.0;
+    });
+    return column_norms(r, system.free, norm, system.op->threads);
+}
+
+// Jacobi CG, or flexible CG with the factored preconditioner (both for L^2 with soft weights, or
+// when asked for), until the true residual meets the goal.
+SolveStats solve_real(const LinearSystem& system, Positions& x, const Positions& b,
+                      const Column3& scale, const Column3& goal, const SolveSettings& settings) {
+    const int n = system.op->size();
     // scratch holds M^-1 K p between the two products of an L^2 system (and the inner solves'
     // first solution); first-order solves never touch it.
-    Positions b(n, 3), r(n, 3), p(n, 3), q(n, 3), scratch(system.order == 2 ? n : 0, 3);
-
-    // b = D x_old. The right-hand side actually solved on the free rows includes the fixed
-    // values' coupling, b_f - A_fc x_c; its norm (or b's, whichever is larger) scales the
-    // stopping rule. Without fixed rows the two are the same and the product is skipped.
-    detail::for_each_row(n, threads, [&](int i) { b.row(i) = d[i] * x.row(i); });
-    const bool any_fixed = std::find(free.begin(), free.end(), 0) != free.end();
-    const Column3 norm_b = column_norms(b, free, settings.norm, threads);
-    Column3 scale = norm_b;
-    if (any_fixed) {
-        p.setZero();
-        for (int i = 0; i < n; ++i)
-            if (!f[i]) p.row(i) = x.row(i);
-        system.apply(p, q, scratch);
-        r = b - q;
-        const Column3 norm_eb = column_norms(r, free, settings.norm, threads);
-        for (int c = 0; c < 3; ++c) scale[c] = std::max(norm_b[c], norm_eb[c]);
-    }
-    Column3 goal;
-    for (int c = 0; c < 3; ++c) goal[c] = scale[c] > 0 ? settings.tolerance * scale[c] : 0.0;
-
+    Positions r(n, 3), p(n, 3), q(n, 3), scratch(system.order == 2 ? n : 0, 3);
     SolveStats stats;
     std::unique_ptr<FactoredPreconditioner> factored;
     Positions z;
@@ -449,45 +525,17 @@ SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& 
     // iteration of the L^2 system two, so the inner solves get twice the cap.
     const int inner_cap = 2 * settings.max_iterations;
 
-    auto relative = [&](const Column3& rn) {
-        double worst = 0;
-        for (int c = 0; c < 3; ++c) worst = std::max(worst, scale[c] > 0 ? rn[c] / scale[c] : rn[c]);
-        return worst;
-    };
-    Column3 initial{0, 0, 0};
-    bool have_initial = false;
-    auto fraction_done = [&](const Column3& now) {
-        double worst = 1;
-        for (int c = 0; c < 3; ++c) {
-            if (!(now[c] > goal[c]) || !(initial[c] > goal[c])) continue;
-            worst = std::min(worst, std::log(initial[c] / now[c]) / std::log(initial[c] / goal[c]));
-        }
-        return std::max(0.0, worst);
-    };
-    std::function<void(const Column3&)> after_iteration;
-    if (settings.progress)
-        after_iteration = [&](const Column3& rn) { settings.progress(fraction_done(rn)); };
-
-    // CG's recursively updated residual drifts from the true one on ill-conditioned systems (the
-    // L^2 forms), so convergence is confirmed on the true residual, restarting from the current
-    // iterate when it disagrees.
-    constexpr int kMaxRestarts = 8;
+    Progress progress(settings, goal);
+    const std::function<void(const Column3&)>& after_iteration = progress.callback();
     std::array<bool, 3> active{false, false, false};
     Column3 rn{0, 0, 0};
     for (int restart = 0;; ++restart) {
-        system.apply(x, q, scratch);
-        detail::for_each_row(n, threads, [&](int i) {
-            for (int c = 0; c < 3; ++c) r(i, c) = f[i] ? b(i, c) - q(i, c) : 0.0;
-        });
-        rn = column_norms(r, free, settings.norm, threads);
+        rn = true_residual(system, b, x, settings.norm, r, q, scratch);
         for (int c = 0; c < 3; ++c) {
             check_finite(rn[c], stats.iterations);
             active[c] = rn[c] > goal[c];
         }
-        if (!have_initial) {
-            initial = rn;
-            have_initial = true;
-        }
+        progress.start(rn);
         if (!any(active) || restart == kMaxRestarts || stats.iterations >= settings.max_iterations ||
             stats.inner_iterations >= inner_cap)
             break;
@@ -509,17 +557,8 @@ SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& 
         if (trial_pending && stats.iterations == trial_end && any(active) &&
             trial_end < settings.max_iterations) {
             trial_pending = false;
-            // Iterations still needed at the geometric rate of the trial, worst column.
-            double remaining = 0;
-            for (int c = 0; c < 3; ++c) {
-                if (!active[c]) continue;
-                if (!(rn[c] < start[c])) {
-                    remaining = INFINITY;
-                    break;
-                }
-                const double rate = std::log(rn[c] / start[c]) / (stats.iterations - before);
-                remaining = std::max(remaining, std::log(goal[c] / rn[c]) / rate);
-            }
+            const double remaining =
+                remaining_iterations(active, start, rn, goal, stats.iterations - before);
             if (remaining > kJacobiTrial) use_factored();
             else stats.iterations = jacobi_cg(system, inverse.data(), x, r, p, q, scratch, goal,
                                               settings.norm, stats.iterations,
@@ -527,9 +566,21 @@ SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& 
             --restart;  // the switch (or going on) is not a restart
         }
     }
-    stats.residual = relative(rn);
+    stats.residual = relative(rn, scale);
     stats.converged = !any(active);
     return stats;
+}
+
+}  // namespace
+
+SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& settings) {
+    Positions b(system.op->size(), 3);
+    const Column3 scale = right_hand_side(system, x, settings.norm, b);
+    Column3 goal;
+    for (int c = 0; c < 3; ++c) goal[c] = scale[c] > 0 ? settings.tolerance * scale[c] : 0.0;
+    if (settings.preconditioner == Preconditioner::Automatic && detail::complex_factor_applies(system))
+        return solve_complex(system, x, b, scale, goal, settings);
+    return solve_real(system, x, b, scale, goal, settings);
 }
 
 }  // namespace fairing

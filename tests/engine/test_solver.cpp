@@ -292,16 +292,26 @@ TEST(Solver, AutomaticKeepsJacobiOnLightStepsAndSwitchesOnHeavyOnes) {
     SolverCase s = noisy_sphere_curvature();
     const double h = meshes::mean_edge_length(s.mesh.positions, s.mesh.triangles);
     const int n = s.op.size();
-    for (double time_step : {0.5, 2000.0}) {
-        s.lambda_dt = time_step * std::pow(h, 4);
-        const LinearSystem sys = system_for(s, 2, std::vector<char>(n, 1), s.op.mass);
-        Positions x = s.mesh.positions, reference = s.mesh.positions;
-        const fairing::SolveStats a = solve_with(sys, x, fairing::Preconditioner::Automatic, 1e-10);
-        solve_with(sys, reference, fairing::Preconditioner::Jacobi, 1e-12);
-        EXPECT_TRUE(a.converged);
-        EXPECT_EQ(a.factored, time_step > 1) << "time step " << time_step;
-        EXPECT_LT(meshes::max_row_distance(x, reference), 1e-7 * h);
-    }
+    // With soft weights (D != M) the L^2 system has no complex factorization
+    // (complex_factor.h), and Automatic chooses between Jacobi and Factored; without them it
+    // takes the complex solve at any strength.
+    std::vector<double> weighted(s.op.mass);
+    for (int i = 0; i < n; i += 7) weighted[i] /= 0.8;
+    for (double time_step : {0.5, 2000.0})
+        for (bool soft : {true, false}) {
+            SCOPED_TRACE(testing::Message() << "time step " << time_step << " soft " << soft);
+            s.lambda_dt = time_step * std::pow(h, 4);
+            const LinearSystem sys =
+                system_for(s, 2, std::vector<char>(n, 1), soft ? weighted : s.op.mass);
+            Positions x = s.mesh.positions, reference = s.mesh.positions;
+            const fairing::SolveStats a =
+                solve_with(sys, x, fairing::Preconditioner::Automatic, 1e-10);
+            solve_with(sys, reference, fairing::Preconditioner::Jacobi, 1e-12);
+            EXPECT_TRUE(a.converged);
+            EXPECT_EQ(a.factored, soft && time_step > 1);
+            EXPECT_EQ(a.complex_factor, !soft);
+            EXPECT_LT(meshes::max_row_distance(x, reference), 1e-7 * h);
+        }
     // First-order systems have no factored form: Factored asked for falls back to Jacobi.
     const LinearSystem first = system_for(s, 1, std::vector<char>(n, 1), s.op.mass);
     Positions x = s.mesh.positions;

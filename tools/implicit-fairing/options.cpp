@@ -172,8 +172,9 @@ void addToolOptions(CLI::App& app, CommandLine& cl)
     addChoice(app, "--preconditioner", cl.preconditioner,
               "auto, jacobi or factored. factored (order 2 only) preconditions the L^2 system "
               "with two first-order solves per iteration: its cost grows as the 4th root of the "
-              "time step instead of the square root. auto starts with jacobi and switches when "
-              "the solve turns out heavy. Default: auto",
+              "time step instead of the square root. auto solves an L^2 step without vertex "
+              "weights as one complex first-order solve, Re (M + i sqrt(dt) K)^-1 b; with weights "
+              "it starts with jacobi and switches when the solve turns out heavy. Default: auto",
               {"auto", "jacobi", "factored"}, "NAME");
     app.add_option("--threads", cl.threads,
                    "Threads for the solver on meshes of 50,000 vertices or more (smaller ones "

@@ -61,7 +61,8 @@ enum class ResidualNorm { L2, LInfinity };  // Appendix A.2.
 
 // How the conjugate gradients are preconditioned (see solver.h).
 enum class Preconditioner {
-    Automatic,  // Factored for L^2 steps strong enough to profit, Jacobi otherwise
+    Automatic,  // L^2 without soft weights: one complex solve (solver.h); else Factored for
+                // L^2 steps strong enough to profit, Jacobi otherwise
     Jacobi,     // the diagonal of the system: cheap, iterations grow as sqrt(lambda_dt)
     Factored,   // L^2 only: two first-order solves per iteration, iterations grow as lambda_dt^1/4
 };

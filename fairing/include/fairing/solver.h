@@ -1,4 +1,4 @@
-// Jacobi-preconditioned conjugate gradients for the symmetric positive definite systems of
+// Preconditioned conjugate gradients for the symmetric positive definite systems of
 // implicit fairing (Appendix A, with CG in place of BiCG since the system is symmetric):
 //
 //   order 1:  A = D - lambda_dt K              (eq. 9 multiplied by M)
@@ -22,6 +22,15 @@
 // grows as s = sqrt(lambda_dt) only: the cost grows as lambda_dt^(1/4). The inexact inner solves
 // make B^-1 slightly nonlinear, so the outer iteration is flexible CG (Notay's FCG(1): the new
 // direction is A-orthogonalized against the previous one).
+//
+// Automatic, order 2 without soft weights (D = M on the free rows, the filters' default): the
+// system factors over the complex numbers, A = (M + i s K) M^-1 (M - i s K), and the step is
+// x = Re (M + i s K)^-1 b, one complex solve (COCG with complex Jacobi; src/complex_factor.h).
+// Measured against Jacobi and Factored (bench/results/issue12/preconditioners.md): fewer
+// iterations than Jacobi on the 10 k and 100 k tori at time steps 1 and 22.5 (curvature) and on
+// the 1 M torus and the 1.2 M-face bunny at the defaults, and 1.2-1.9x less CPU time than
+// Factored (the cheaper of the old paths) on those two, so it replaces both there. With soft
+// weights Automatic keeps the Jacobi trial and Factored.
 #pragma once
 
 #include "fairing/fairing.h"
@@ -52,6 +61,7 @@ struct SolveStats {
     int iterations = 0;
     int inner_iterations = 0;  // Factored: the first-order iterations inside B^-1
     bool factored = false;
+    bool complex_factor = false;  // solved as Re (M + i sqrt(lambda_dt) K)^-1 (complex_factor.h)
     double residual = 0;  // max over columns of ||A x - b|| / ||b|| on the free rows
     bool converged = false;
 };

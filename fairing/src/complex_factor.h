@@ -1,0 +1,77 @@
+// The L^2 step as one complex solve (not installed).
+//
+// Without soft weights (D = M on the free rows) the free block of the L^2 system factors over
+// the complex numbers:
+//
+//   A = M + s^2 K M^-1 K = (M + i s K) M^-1 (M - i s K),   s = sqrt(lambda_dt),
+//
+// (on the free rows, with K restricted to them: P zeroes L at the fixed rows), and for any real
+// right-hand side g
+//
+//   A^-1 g = Re[(M + i s K)^-1 g],
+//
+// since per generalized eigenmode (K v = mu M v, mu <= 0, v real) 1 / (1 + s^2 mu^2) =
+// Re 1 / (1 + i s mu). So an L^2 step costs one solve with the complex symmetric matrix
+// M + i s K, which has the sparsity of the first-order matrix M - s K of the same cutoff. Its
+// spectrum (after Jacobi scaling) is the segment 1 + i s mu: a Krylov method converges on it
+// about as fast as CG on the real segment 1 - s mu, i.e. like the first-order step itself, where
+// the L^2 system (1 + s^2 mu^2) needs the square root of a squared condition number. The
+// method is COCG (conjugate orthogonal CG, van der Vorst and Melissen 1990: CG with the
+// unconjugated bilinear form x^T y, valid for complex symmetric matrices) with the complex
+// Jacobi preconditioner.
+//
+// The complex residual does not bound the L^2 residual tightly (per mode the L^2 residual is up
+// to sqrt(1 + s^2 mu^2) times larger), so the iteration stops on the L^2 residual itself,
+// Re r_c + s K M^-1 Im r_c, and solve() confirms it on b - A x, correcting again if needed. The
+// solver's three complex vectors (144 bytes per vertex) and b are all the solve holds.
+#pragma once
+
+#include "fairing/solver.h"
+
+#include <array>
+#include <functional>
+
+namespace fairing {
+namespace detail {
+
+// True when the L^2 system factors as above: order 2 and D = M on every free row.
+bool complex_factor_applies(const LinearSystem& system);
+
+class ComplexFactorSolver {
+public:
+    explicit ComplexFactorSolver(const LinearSystem& system);
+
+    // g = b - A x, the residual of the real L^2 system on the free rows (zero on the fixed
+    // ones), kept as the complex solve's right-hand side; returns its norms per column.
+    std::array<double, 3> set_residual(const Positions& b, const Positions& x, ResidualNorm norm);
+
+    // x += Re[(M + i s K)^-1 g] on the free rows for the g of set_residual, by COCG from zero
+    // (x accumulates the real part of the iterate; its imaginary part is never kept). Column c
+    // iterates while active[c] and stops once the L^2 residual of the new x is <= goal[c]. At
+    // most cap iterations; returns the iterations done. after_iteration gets the complex
+    // residual norms.
+    int correct(Positions& x, const std::array<double, 3>& goal,
+                ResidualNorm norm, int cap, std::array<bool, 3> active,
+                const std::function<void(const std::array<double, 3>&)>& after_iteration);
+
+private:
+    using Complex6 = Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::RowMajor>;
+    // q = (M + i s K) p, returning the unconjugated products p^T q per column (re, im).
+    std::array<double, 6> product(const Complex6& p, Complex6& q) const;
+    // One pass over the rows: with alpha (re, im per column), x += Re(alpha p) and
+    // r -= alpha q; then u = J^-1 r, and per column the residual norm (squares or maxima of
+    // |r|) in [0..2] and r^T u in [3..8] (re, im). first: p = u (the first direction).
+    std::array<double, 9> update(const double* alpha, bool first, ResidualNorm norm, Positions* x);
+    // p = J^-1 r + beta p on the columns whose beta (re, im per column) is not NaN.
+    void next_direction(const double* beta);
+    // Norms of the L^2 residual g - A (x + Re z) per column, from r_c alone (uses q as scratch).
+    std::array<double, 3> l2_residual_norms(ResidualNorm norm);
+
+    const LinearSystem& system_;
+    double s_ = 0;
+    std::vector<double> inverse_;  // 1 / (M_i + i s K_ii): re, im per row; 0 on fixed rows
+    Complex6 r_, p_, q_;
+};
+
+}  // namespace detail
+}  // namespace fairing
