@@ -36,7 +36,7 @@ while [ $# -gt 0 ]; do
       args+=("$1" "$2"); shift ;;
     --results) [ $# -ge 2 ] || { echo "run.sh: $1 needs a value" >&2; exit 2; }
       mkdir -p "$2"; results=$(cd "$2" && pwd); shift ;;
-    -h|--help) sed -n 2,24p "$0"; exit 0 ;;
+    -h|--help) awk 'NR > 1 && !/^#/ {exit} NR > 1 && !/SPDX/' "$0"; exit 0 ;;
     *) echo "run.sh: unknown option $1" >&2; exit 2 ;;
   esac
   shift
