@@ -12,7 +12,7 @@ Laplace smoother C0 / C1 (openmesh_denoise). Error: RMS distance of the vertices
 surface in mean edges (common/denoise_shapes.h). Raw rows: denoise.jsonl; tables and plots:
 denoise_report.py.
 """
-import argparse, concurrent.futures as cf, json, math, os, platform, re, shutil, subprocess, sys, tarfile, time
+import argparse, collections, concurrent.futures as cf, json, math, os, platform, re, shutil, subprocess, sys, tarfile, time
 
 p = argparse.ArgumentParser()
 p.add_argument("--root", required=True)
@@ -105,8 +105,10 @@ ALL = [
     ("camel_loop1_78k", "scan", scan_loop("camel", 1), "mesh"),
 ]
 QUICK = ["sphere2_3k", "plane_3k", "elephant_6k", "fandisk_13k"]
-FULL = ["sphere2_3k", "sphere2_13k", "torus_10k", "plane_10k", "elephant_6k", "fandisk_13k", "camel_20k",
-        "dragon_20k", "bunny_75k", "elephant_loop1_22k", "fandisk_loop1_52k"]
+# ~110 k faces in all: about 45 min on 2 cores shared with a few builds (the sweeps, not the mesh
+# size, dominate); bunny_75k, armadillo_52k, fandisk_loop1_52k, camel_loop1_78k via --only.
+FULL = ["sphere2_3k", "sphere2_13k", "torus_10k", "plane_3k", "elephant_6k", "fandisk_13k", "camel_20k",
+        "dragon_20k", "elephant_loop1_22k"]
 COST_MESH = ("bunny_loop2_1.2m", scan_loop("bunny00", 2))
 NOISES = [("n0.1", 0.1, "normal"), ("n0.25", 0.25, "normal"), ("n0.5", 0.5, "normal"), ("iso0.25", 0.25, "iso")]
 
@@ -146,8 +148,8 @@ ALL_KIND = [(n, k) for n, k, *_ in ALL]
 
 
 def steps_for(m):
-    """All of 1..4 on meshes up to 30 k faces; 1, 2 and 4 above (time)."""
-    return [1, 2, 3, 4] if m["info"]["faces"] <= 30000 else [1, 2, 4]
+    """All of 1..4 on meshes up to 12 k faces; 1, 2 and 4 above (time)."""
+    return [1, 2, 3, 4] if m["info"]["faces"] <= 12000 else [1, 2, 4]
 
 
 def ours_task(m, c, op, order):
@@ -210,7 +212,7 @@ def meshlab_tasks(m, c):
     for thr in (60, 30):
         t.append(("Two Step normalThr=%d" % thr, "TwoStep Smooth", [("stepSmoothNum", "1"), ("normalThr", str(thr))],
                   32 if m["info"]["faces"] < 60000 else 16))
-    return [(lambda lab=lab, fn=fn, pr=pr, mx=mx: meshlab_task(m, c, lab, fn, pr, mx)) for lab, fn, pr, mx in t]
+    return [(lab, lambda lab=lab, fn=fn, pr=pr, mx=mx: meshlab_task(m, c, lab, fn, pr, mx)) for lab, fn, pr, mx in t]
 
 
 def cgal_task(m, c, iterations):
@@ -320,23 +322,35 @@ def main():
                     tasks.append(("ours %s %s %s L%d" % (m["name"], c["noise"], op, order),
                                   lambda m=m, c=c, op=op, order=order: ours_task(m, c, op, order)))
                 if auto_cli:
-                    tasks.append(("cli auto", lambda m=m, c=c, op=op: cli_auto_task(m, c, op)))
-            for k, f in enumerate(meshlab_tasks(m, c)):
-                tasks.append(("meshlab %s %s #%d" % (m["name"], c["noise"], k), f))
+                    tasks.append(("cli-auto", lambda m=m, c=c, op=op: cli_auto_task(m, c, op)))
+            for lab, f in meshlab_tasks(m, c):
+                tasks.append(("meshlab-%s %s %s" % (lab.split()[0], m["name"], c["noise"]), f))
             for it in (1, 3):
                 tasks.append(("cgal %s %s ×%d" % (m["name"], c["noise"], it), lambda m=m, c=c, it=it: cgal_task(m, c, it)))
             for cont in ("C0", "C1"):
                 tasks.append(("openmesh %s %s %s" % (m["name"], c["noise"], cont),
                               lambda m=m, c=c, cont=cont: openmesh_task(m, c, cont)))
-        if m["name"].startswith(("plane", "sphere")):
-            for order in (1, 2):
-                for steps in (1, 4):
-                    tasks.append(("invariant %s" % m["name"], lambda m=m, order=order, steps=steps: invariant_task(
-                        m, "curvature", order, steps, [1, 10, 100, 1000] if order == 1 else [10, 100, 1000, 10000])))
+        if m["name"].startswith(("plane", "sphere")):  # the umbrella for comparison: it moves both
+            for op in ("curvature", "umbrella"):
+                for order in (1, 2):
+                    for steps in (1, 4):
+                        ts = [1, 10, 100, 1000] if order == 1 else [10, 100, 1000, 10000]
+                        if op == "umbrella":
+                            ts = [0.1, 1, 10] if order == 1 else [0.1, 1, 10, 100]
+                        tasks.append(("invariant %s" % m["name"], lambda m=m, op=op, order=order, steps=steps, ts=ts:
+                                      invariant_task(m, op, order, steps, ts)))
     log("%d tasks on %d meshes, %d parallel jobs" % (len(tasks), len(meshes), a.jobs))
-    rows, failures = [], []
+    rows, failures, spent = [], [], collections.Counter()
+
+    def timed(name, f):
+        t0 = time.time()
+        try:
+            return f()
+        finally:
+            spent[name.split()[0] + (" L" + name[-1] if name.startswith("ours") else "")] += time.time() - t0
+
     with cf.ThreadPoolExecutor(a.jobs) as ex:
-        futs = {ex.submit(f): name for name, f in tasks}
+        futs = {ex.submit(timed, name, f): name for name, f in tasks}
         for i, fu in enumerate(cf.as_completed(futs)):
             try:
                 rows.extend(fu.result())
@@ -352,9 +366,10 @@ def main():
                 cores=os.cpu_count(), load_after=os.getloadavg(), minutes=(time.time() - started) / 60,
                 git=run(["git", "-C", root, "rev-parse", "--short", "HEAD"]).stdout.strip(),
                 command="bench/denoise.sh" + (" --quick" if a.quick else "") + (" --only " + a.only if only else ""),
-                auto_cli=auto_cli, auto_engine=auto_tool, meshes=[dict(name=m["name"], kind=dict(ALL_KIND)[m["name"]], truth=m["truth"], **m["info"])
-                                           for m in meshes], noises=NOISES, failures=failures)
-    path = os.path.join(results, "denoise.jsonl")
+                auto_cli=auto_cli, auto_engine=auto_tool, task_minutes={k: round(v / 60, 2) for k, v in spent.items()}, meshes=[dict(name=m["name"], kind=dict(ALL_KIND)[m["name"]], truth=m["truth"], **m["info"])
+                                           for m in meshes], noises=NOISES, failures=failures,
+                full_rows="$FAIRING_CACHE/denoise-runs/denoise-full.jsonl")
+    path = os.path.join(runs_dir, "denoise-full.jsonl")   # every row; results/denoise.jsonl: the report's extract
     with open(path, "w") as f:
         f.write(json.dumps(dict(meta=meta)) + "\n")
         for r in rows:
