@@ -23,6 +23,9 @@ p.add_argument("--only", default="", help="comma-separated mesh names")
 p.add_argument("--results", default="")
 p.add_argument("--jobs", type=int, default=2)
 p.add_argument("--no-cost", action="store_true", help="skip the >= 1 M-face cost row")
+p.add_argument("--peers-from", default="", help="passed to denoise_report.py (with --ours-only)")
+p.add_argument("--ours-only", action="store_true",
+               help="only our filters (the peers' rows then come from an earlier run: denoise_report.py --peers-from)")
 a = p.parse_args()
 root, build, cache = a.root, a.build, a.cache
 B = os.path.join(build, "bench", "bin")
@@ -323,6 +326,8 @@ def main():
                                   lambda m=m, c=c, op=op, order=order: ours_task(m, c, op, order)))
                 if auto_cli:
                     tasks.append(("cli-auto", lambda m=m, c=c, op=op: cli_auto_task(m, c, op)))
+            if a.ours_only:
+                continue
             for lab, f in meshlab_tasks(m, c):
                 tasks.append(("meshlab-%s %s %s" % (lab.split()[0], m["name"], c["noise"]), f))
             for it in (1, 3):
@@ -365,17 +370,21 @@ def main():
     meta = dict(date=time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), machine=platform.node(),
                 cores=os.cpu_count(), load_after=os.getloadavg(), minutes=(time.time() - started) / 60,
                 git=run(["git", "-C", root, "rev-parse", "--short", "HEAD"]).stdout.strip(),
-                command="bench/denoise.sh" + (" --quick" if a.quick else "") + (" --only " + a.only if only else ""),
+                command="bench/denoise.sh" + (" --quick" if a.quick else "") + (" --only " + a.only if only else "")
+                        + (" --ours-only" if a.ours_only else ""),
                 auto_cli=auto_cli, auto_engine=auto_tool, task_minutes={k: round(v / 60, 2) for k, v in spent.items()}, meshes=[dict(name=m["name"], kind=dict(ALL_KIND)[m["name"]], truth=m["truth"], **m["info"])
                                            for m in meshes], noises=NOISES, failures=failures,
-                full_rows="$FAIRING_CACHE/denoise-runs/denoise-full.jsonl")
-    path = os.path.join(runs_dir, "denoise-full.jsonl")   # every row; results/denoise.jsonl: the report's extract
+                full_rows="$FAIRING_CACHE/denoise-runs/denoise-full%s%s.jsonl" % ("-quick" if a.quick else "",
+                                                                                 "-ours" if a.ours_only else ""))
+    # every row (results/denoise.jsonl is the report's extract); never the file --peers-from reads
+    path = os.path.join(runs_dir, "denoise-full%s%s.jsonl" % ("-quick" if a.quick else "", "-ours" if a.ours_only else ""))
     with open(path, "w") as f:
         f.write(json.dumps(dict(meta=meta)) + "\n")
         for r in rows:
             f.write(json.dumps(r, ensure_ascii=False) + "\n")
     log("%d rows in %s; %d failures" % (len(rows), path, len(failures)))
-    subprocess.run([sys.executable, os.path.join(root, "bench", "denoise_report.py"), path, results], check=True)
+    subprocess.run([sys.executable, os.path.join(root, "bench", "denoise_report.py"), path, results]
+                   + (["--peers-from", a.peers_from] if a.peers_from else []), check=True)
 
 
 main()

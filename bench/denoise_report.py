@@ -5,17 +5,30 @@ RESULTS_DIR/denoise.jsonl: the extract of DENOISE.jsonl these tables and plots u
 the best row of every filter setting and peer, the automatic choices, the plotted curves, the
 invariant and cost rows; a few hundred KB where every row is several MB).
 
-    denoise_report.py DENOISE.jsonl [MORE.jsonl ...] RESULTS_DIR
+    denoise_report.py DENOISE.jsonl [MORE.jsonl ...] RESULTS_DIR [--peers-from EARLIER.jsonl]
 
 Everything here is computed from the rows of DENOISE.jsonl; nothing is typed by hand."""
 import collections, json, math, os, shutil, subprocess, sys, tempfile
 
-*srcs, out_dir = sys.argv[1:]
+args = sys.argv[1:]
+peers_from = None
+if "--peers-from" in args:   # the peers' rows of an earlier run (same meshes, same seeds: same inputs)
+    i = args.index("--peers-from")
+    peers_from = args[i + 1]
+    del args[i:i + 2]
+*srcs, out_dir = args
 src = srcs[0]
 meta, R = None, []
-for path in srcs:   # several runs (e.g. the full run and an --only run of a bigger mesh) merge
+for path in srcs + ([peers_from] if peers_from else []):   # several runs (e.g. the full run and an --only run of a bigger mesh) merge
     lines = [json.loads(l) for l in open(path)]
     m_ = lines[0]["meta"]
+    if path == peers_from:
+        meta["command"] += " (peers' rows: %s, %s, %.1f min)" % (m_["command"], m_["date"], m_["minutes"])
+        meta["failures"] = meta.get("failures", []) + [x for x in m_.get("failures", [])
+                                                       if not x["task"].startswith(("ours", "cli-auto", "invariant"))]
+        R += [r for r in lines[1:] if r.get("method", "").startswith(("MeshLab", "CGAL", "OpenMesh"))
+              and r.get("mesh") in {x["name"] for x in meta["meshes"]}]
+        continue
     if meta is None:
         meta = m_
     else:
@@ -453,7 +466,7 @@ for op in OPS:
                 keep.update(id(r) for r in v)
 DROP = ("vertices", "faces", "closed", "mesh_kind")
 extract = os.path.join(out_dir, "denoise.jsonl")
-if os.path.abspath(extract) not in [os.path.abspath(x) for x in srcs]:
+if os.path.abspath(extract) not in [os.path.abspath(x) for x in srcs + [peers_from or ""]]:
     with open(extract, "w") as fo:
         fo.write(json.dumps(dict(meta=meta), ensure_ascii=False) + "\n")
         inputs = set()
