@@ -47,9 +47,10 @@ if [ "$install" = 1 ]; then
 fi
 
 src=$("$root/scripts/meshlab-2020-sdk.sh")
+sdk2025=$("$root/scripts/meshlab-2025-sdk.sh")  # the CLI reads meshes with its vcglib
 echo "run.sh: building engine, CLI and plugin into $bb/main" >&2
 cmake -S "$root" -B "$bb/main" -G Ninja -DCMAKE_BUILD_TYPE=Release -DFAIRING_BUILD_TESTS=OFF \
-  -DMESHLAB_2020_SOURCE="$src" >/dev/null
+  -DMESHLAB_2020_SOURCE="$src" -DMESHLAB_2025_SDK="$sdk2025" >/dev/null
 cmake --build "$bb/main" -j2 >/dev/null
 echo "run.sh: building bench tools and peers into $bb/bench" >&2
 cmake -S "$root/bench" -B "$bb/bench" -G Ninja -DCMAKE_BUILD_TYPE=Release -DMESHLAB_2020_SOURCE="$src" \

@@ -3,15 +3,16 @@
 // list, translates parameters into fairing::Options, runs the adapters and the engine, and logs.
 #include "filter_implicit_fairing.h"
 
-#include "filter_parameters.h"
-
 #include <fairing/fairing.h>
+#include <fairing_parameters/filter_parameters.h>
 #include <vcg_adapters/vcg_adapters.h>
 
 #include <QElapsedTimer>
 #include <QStringList>
 
 #include <algorithm>
+#include <functional>
+#include <stdexcept>
 #include <thread>
 
 namespace {
@@ -182,13 +183,10 @@ void FilterImplicitFairing::initParameters(fairing_plugin::FilterId id, const Me
            "of failing and leaving the mesh unchanged.")));
 }
 
-fairing_plugin::RunFigures FilterImplicitFairing::apply(fairing_plugin::FilterId id, MeshModel& m,
-                                                        const RichParameterList& par,
-                                                        vcg::CallBackPos* cb)
-{
-    QElapsedTimer timer;
-    timer.start();
+namespace {
 
+Values readValues(const RichParameterList& par)
+{
     Values v;
     v.timeStep = static_cast<double>(par.getFloat(kTimeStep));
     v.steps = par.getInt(kSteps);
@@ -204,20 +202,75 @@ fairing_plugin::RunFigures FilterImplicitFairing::apply(fairing_plugin::FilterId
     v.maxIterations = par.getInt(kMaxIterations);
     v.freezeOperator = par.getBool(kFreezeOperator);
     v.acceptUnconverged = par.getBool(kAcceptUnconverged);
-    fairing::Options o = toOptions(operatorOf(id), v);
+    return v;
+}
 
-    // Progress: only from the thread that called applyFilter, only when the percentage changes.
+// Progress: only from the thread that called applyFilter, only when the percentage changes.
+std::function<void(double)> progressTo(vcg::CallBackPos* cb, int& lastPercent)
+{
+    if (cb == nullptr) return nullptr;
     const std::thread::id caller = std::this_thread::get_id();
-    int lastPercent = -1;
-    if (cb != nullptr) {
-        o.progress = [cb, caller, &lastPercent](double f) {
-            if (std::this_thread::get_id() != caller) return;
-            const int p = std::max(0, std::min(100, static_cast<int>(f * 100.0)));
-            if (p == lastPercent) return;
-            lastPercent = p;
-            cb(p, "Implicit fairing");
-        };
+    return [cb, caller, &lastPercent](double f) {
+        if (std::this_thread::get_id() != caller) return;
+        const int p = std::max(0, std::min(100, static_cast<int>(f * 100.0)));
+        if (p == lastPercent) return;
+        lastPercent = p;
+        cb(p, "Implicit fairing");
+    };
+}
+
+int unconvergedSolves(const fairing::Result& r)
+{
+    return static_cast<int>(std::count_if(r.solves.begin(), r.solves.end(),
+                                          [](const fairing::SolveReport& s) { return !s.converged; }));
+}
+
+// The run's figures, which pymeshlab returns as a dict. Warnings that change the result reach
+// a non-verbose pymeshlab user only here (its log and stderr are silenced), and as numbers and
+// flags: pymeshlab 2025.7's toPyDict drops strings.
+fairing_plugin::RunFigures figuresOf(const fairing::Result& r, double seconds)
+{
+    fairing_plugin::RunFigures figures;
+    figures.counts = {{"steps", r.steps},
+                      {"iterations", r.total_iterations},
+                      {"inner_iterations", r.total_inner_iterations},
+                      {"vertices_moved", r.vertices_moved},
+                      {"vertices_fixed", r.vertices_fixed},
+                      {"warnings", static_cast<int>(r.warnings.size())},
+                      {"unconverged_solves", unconvergedSolves(r)}};
+    figures.values = {{"residual", r.max_residual},
+                      {"volume_before", r.volume_before},
+                      {"volume_after", r.volume_after},
+                      {"lambda_dt", r.lambda_dt},
+                      {"engine_seconds", r.seconds},
+                      {"seconds", seconds}};
+    figures.flags = {{"explicit_unstable", r.explicit_unstable}};
+    return figures;
+}
+
+}  // namespace
+
+fairing_plugin::RunFigures FilterImplicitFairing::apply(fairing_plugin::FilterId id, MeshModel& m,
+                                                        const RichParameterList& par,
+                                                        vcg::CallBackPos* cb)
+{
+    try {
+        return run(id, m, par, cb);
+    } catch (const fairing::Error& e) {
+        throw std::runtime_error(render(e, fairing_plugin::kMessageHost));
     }
+}
+
+fairing_plugin::RunFigures FilterImplicitFairing::run(fairing_plugin::FilterId id, MeshModel& m,
+                                                      const RichParameterList& par,
+                                                      vcg::CallBackPos* cb)
+{
+    QElapsedTimer timer;
+    timer.start();
+    const Values v = readValues(par);
+    fairing::Options o = toOptions(operatorOf(id), v);
+    int lastPercent = -1;
+    o.progress = progressTo(cb, lastPercent);
 
     vcg_adapters::ConstraintSettings cs;
     cs.onlySelected = v.selected;
@@ -235,14 +288,24 @@ fairing_plugin::RunFigures FilterImplicitFairing::apply(fairing_plugin::FilterId
     updateBoxAndNormals(m);
     if (cb != nullptr) cb(100, "Implicit fairing done");
 
-    // ---- log -----------------------------------------------------------------------------------
+    const double seconds = timer.elapsed() / 1000.0;
+    logRun(id, v, o, cs, crep, r, static_cast<long>(tm.positions.rows()), seconds);
+    return figuresOf(r, seconds);
+}
+
+void FilterImplicitFairing::logRun(fairing_plugin::FilterId id, const Values& v,
+                                   const fairing::Options& o,
+                                   const vcg_adapters::ConstraintSettings& cs,
+                                   const vcg_adapters::ConstraintReport& crep,
+                                   const fairing::Result& r, long vertices, double seconds)
+{
     logLine(QString("%1: %2 operator, %3, %4 integration")
                 .arg(filterName(id))
                 .arg(fairing::to_string(o.op))
                 .arg(o.order == 2 ? QString::fromUtf8("L²") : QString("L"))
                 .arg(QString::fromStdString(integrationLabels()[v.integration]).toLower()));
     logLine(QString("Vertices moved: %1 of %2; fixed: %3")
-                .arg(r.vertices_moved).arg(tm.positions.rows()).arg(r.vertices_fixed));
+                .arg(r.vertices_moved).arg(vertices).arg(r.vertices_fixed));
     if (cs.onlySelected)
         logLine(QString("Affect only selection: %1 vertices free from the %2, %3 fixed")
                     .arg(crep.movable).arg(QString::fromStdString(crep.selectionSource))
@@ -252,6 +315,15 @@ fairing_plugin::RunFigures FilterImplicitFairing::apply(fairing_plugin::FilterId
                         "clamped to [0,1]")
                     .arg(cs.invertQuality ? " (inverted)" : "")
                     .arg(crep.zeroWeights).arg(crep.qualityClamped));
+    logSolves(o, r);
+    logComponents(o, r);
+    logWarnings(r);
+    logLine(QString("Time: %1 s in the engine, %2 s in total")
+                .arg(num(r.seconds)).arg(num(seconds)));
+}
+
+void FilterImplicitFairing::logSolves(const fairing::Options& o, const fairing::Result& r)
+{
     logLine(QString::fromUtf8("Steps: %1; absolute λdt per step: %2 (time step %3)")
                 .arg(r.steps).arg(num(r.lambda_dt)).arg(num(o.time_step)));
     for (const fairing::SolveReport& s : r.solves)
@@ -264,6 +336,10 @@ fairing_plugin::RunFigures FilterImplicitFairing::apply(fairing_plugin::FilterId
                     .arg(num(s.residual)).arg(s.converged ? "" : " (NOT converged)"));
     logLine(QString("CG iterations in total: %1; largest final residual: %2")
                 .arg(r.total_iterations).arg(num(r.max_residual)));
+}
+
+void FilterImplicitFairing::logComponents(const fairing::Options& o, const fairing::Result& r)
+{
     logLine(QString("Volume of closed components: before %1, after %2")
                 .arg(num(r.volume_before)).arg(num(r.volume_after)));
     logLine(QString("Boundary: %1 (%2 boundary loops); volume preservation %3")
@@ -281,6 +357,10 @@ fairing_plugin::RunFigures FilterImplicitFairing::apply(fairing_plugin::FilterId
     }
     if (r.components.size() > shown)
         logLine(QString("  ... and %1 more components").arg(r.components.size() - shown));
+}
+
+void FilterImplicitFairing::logWarnings(const fairing::Result& r)
+{
     if (r.isolated_vertices > 0)
         logLine(QString("Warning: %1 isolated vertices left out").arg(r.isolated_vertices));
     if (r.zero_area_faces > 0)
@@ -292,24 +372,6 @@ fairing_plugin::RunFigures FilterImplicitFairing::apply(fairing_plugin::FilterId
                     .arg(r.inconsistent_edges));
     for (const std::string& w : r.warnings)
         logLine(QString("Warning: %1").arg(QString::fromStdString(w)));
-    const double seconds = timer.elapsed() / 1000.0;
-    logLine(QString("Time: %1 s in the engine, %2 s in total")
-                .arg(num(r.seconds)).arg(num(seconds)));
-
-    // ---- the run's figures (pymeshlab returns them as a dict) ---------------------------------
-    fairing_plugin::RunFigures figures;
-    figures.counts = {{"steps", r.steps},
-                      {"iterations", r.total_iterations},
-                      {"inner_iterations", r.total_inner_iterations},
-                      {"vertices_moved", r.vertices_moved},
-                      {"vertices_fixed", r.vertices_fixed}};
-    figures.values = {{"residual", r.max_residual},
-                      {"volume_before", r.volume_before},
-                      {"volume_after", r.volume_after},
-                      {"lambda_dt", r.lambda_dt},
-                      {"engine_seconds", r.seconds},
-                      {"seconds", seconds}};
-    return figures;
 }
 
 MESHLAB_PLUGIN_NAME_EXPORTER(FilterImplicitFairing)

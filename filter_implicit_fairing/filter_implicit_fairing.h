@@ -6,6 +6,10 @@
 
 #include "meshlab_api.h"
 
+#include <fairing/fairing.h>
+#include <fairing_parameters/filter_parameters.h>
+#include <vcg_adapters/vcg_adapters.h>
+
 class FilterImplicitFairing : public fairing_plugin::FilterBase {
     Q_OBJECT
     MESHLAB_PLUGIN_IID_EXPORTER(FAIRING_FILTER_IID)
@@ -29,4 +33,16 @@ public:
     fairing_plugin::RunFigures apply(fairing_plugin::FilterId id, MeshModel& m,
                                      const RichParameterList& par,
                                      vcg::CallBackPos* cb) override;
+
+private:
+    // apply() without rendering fairing::Error for the host
+    fairing_plugin::RunFigures run(fairing_plugin::FilterId id, MeshModel& m,
+                                   const RichParameterList& par, vcg::CallBackPos* cb);
+    void logRun(fairing_plugin::FilterId id, const filter_parameters::Values& v,
+                const fairing::Options& o, const vcg_adapters::ConstraintSettings& cs,
+                const vcg_adapters::ConstraintReport& crep, const fairing::Result& r,
+                long vertices, double seconds);
+    void logSolves(const fairing::Options& o, const fairing::Result& r);
+    void logComponents(const fairing::Options& o, const fairing::Result& r);
+    void logWarnings(const fairing::Result& r);
 };

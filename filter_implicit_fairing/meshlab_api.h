@@ -13,6 +13,8 @@
 // updateBoxAndNormals, python names and the output map of a run's figures (new API only).
 #pragma once
 
+#include <fairing_parameters/repair_hints.h>
+
 #include <QAction>
 #include <QObject>
 #include <QString>
@@ -22,6 +24,7 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #if !defined(FAIRING_MESHLAB_API)
 #error "FAIRING_MESHLAB_API must be defined (2020 or 2025) by the build system"
@@ -46,11 +49,25 @@ using FilterId = int;   // FilterIDType (2020) and ActionIDType (2025) are both 
 
 // What one run did, returned by apply(): integer counts and real values by name. The 2025 shim
 // returns them as applyFilter's output map (pymeshlab hands it to Python as a dict, ints as int,
-// values as float); the 2020 API has no output map and ignores them.
+// values as float, flags as bool: pymeshlab's toPyDict converts no strings); the 2020 API has no
+// output map and ignores them.
 struct RunFigures {
     std::map<std::string, int> counts;
     std::map<std::string, double> values;
+    std::map<std::string, bool> flags;
 };
+
+// The host whose words the error messages use (filter_parameters::render). A plugin cannot ask
+// whether pymeshlab or the GUI loaded it, but its precision tells: pymeshlab 2025.7 is built in
+// double and the MeshLab 2025.07 GUI in float, and each refuses a plugin of the other precision
+// (PluginManager::checkPlugin), so the double binary runs only under pymeshlab.
+#if FAIRING_MESHLAB_API == 2020
+constexpr filter_parameters::Host kMessageHost = filter_parameters::Host::MeshLab2020;
+#else
+constexpr filter_parameters::Host kMessageHost = std::is_same<Scalarm, double>::value
+                                                     ? filter_parameters::Host::Pymeshlab
+                                                     : filter_parameters::Host::MeshLab2025;
+#endif
 
 class FilterBase : public QObject, public FAIRING_FILTER_INTERFACE {
 public:
@@ -154,6 +171,7 @@ public:
         std::map<std::string, QVariant> out;
         for (const auto& c : figures.counts) out[c.first] = QVariant(c.second);
         for (const auto& v : figures.values) out[v.first] = QVariant(v.second);
+        for (const auto& f : figures.flags) out[f.first] = QVariant(f.second);
         return out;
     }
 

@@ -9,13 +9,15 @@ export FAIRING_CACHE=${FAIRING_CACHE:-$HOME/.cache/filter_implicit_fairing}
 
 # Debian packages the engine, the tests and the tools need.
 packages=(g++ cmake ninja-build pkg-config libeigen3-dev libgtest-dev libgmock-dev
-          libcli11-dev)
+          libcli11-dev nlohmann-json3-dev)
 # The sanitizer build and the fuzzer (scripts/sanitize.sh, fuzz/run.sh): clang with libFuzzer.
 packages+=(clang libclang-rt-14-dev)
 # MeshLab 2020.09 plugin (Debian 12's meshlab), its headless runs and integration tests
 # (python3 test helpers; xdotool, imagemagick and tesseract drive and read the GUI under Xvfb).
 packages+=(meshlab qtbase5-dev libqt5opengl5-dev libglew-dev dpkg-dev xz-utils python3
            xvfb xauth xdotool imagemagick tesseract-ocr tesseract-ocr-eng)
+# The Debian package (scripts/package.sh, tests/package): man page from --help, lintian, man -w.
+packages+=(help2man lintian man-db)
 "$root/scripts/ensure-packages.sh" "${packages[@]}"
 
 # MeshLab 2020.09 headers (Debian source package, pinned) into the cache; prints its directory.

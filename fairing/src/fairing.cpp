@@ -4,6 +4,7 @@
 #include "fairing/invariants.h"
 #include "fairing/operators.h"
 #include "fairing/solver.h"
+#include "auto_strength.h"
 #include "geometry.h"
 #include "kernels.h"
 #include "vertex_order.h"
@@ -66,9 +67,10 @@ void validate(const TriangleMesh& mesh, const Constraints& constraints, const Op
         throw Error(detail::count_of(bad_weights, "vertex weight is", "vertex weights are") +
                     " outside [0, 1] or not a number; a weight scales the smoothing at its "
                     "vertex (section 2.7), 0 keeps it fixed");
-    if (!(std::isfinite(options.time_step) && options.time_step >= 0))
-        throw Error("the time step must be a finite number >= 0 (got " +
-                    number(options.time_step) + ")");
+    if (options.time_step.has_value() &&
+        !(std::isfinite(*options.time_step) && *options.time_step >= 0))
+        throw Error("the time step must be a finite number >= 0, or left automatic (got " +
+                    number(*options.time_step) + ")");
     if (options.steps < 0)
         throw Error("the number of steps must be >= 0 (got " + std::to_string(options.steps) + ")");
     if (options.order != 1 && options.order != 2)
@@ -136,12 +138,28 @@ public:
     Result run();
 
 private:
+    void check_input();
+    Eigen::RowVector3d centre();
+    void set_free_masks();
+    void add_virtual_mode();
+    void set_targets();
+    void assemble_surface();
+    std::vector<char> surface_free() const;
+    void choose_time_step();
+    void take_steps();
+    void finish(const Eigen::RowVector3d& origin);
+    void warn_about_input();
     void integrate(const SparseOperator& op, const std::vector<char>& free, double lambda_dt,
                    int step, const char* system);
+    void explicit_step(const SparseOperator& op, const std::vector<char>& free,
+                       double lambda_dt, const char* system);
+    void record(const SolveStats& stats, int step, const char* system);
     void restore();
     void warn(const std::string& w) { result_.warnings.push_back(w); }
     // The CG-based estimate may go back when the residual rises; the user sees it only advance.
+    // The automatic strength takes the first `progress_offset_` of the range.
     void report_progress(double fraction) {
+        fraction = progress_offset_ + (1 - progress_offset_) * fraction;
         if (options_.progress && fraction > progress_) {
             progress_ = fraction;
             options_.progress(fraction);
@@ -157,46 +175,94 @@ private:
     std::vector<double> weight_;
     std::vector<char> hard_;        // user constraints and weight 0
     std::vector<char> restorable_;  // may be moved by the volume/area restoration
+    std::vector<char> free_surface_, free_curve_;  // unknowns of the two systems
+    std::vector<char> ever_free_;   // moved by some step
     std::vector<double> target_;    // per component: volume (closed) or area (open), or 0
     Positions x_;                   // centred working positions (plus virtual vertices)
+    SparseOperator surface_, curve_;
+    AssemblyReport worst_;          // most of each finding over the assemblies
+    double mean_edge_ = 0;
+    double length_unit_ = 1;        // (mean edge)^(2 order): lambda_dt per unit time step
+    double time_step_ = 0;
     Result result_;
     bool warned_stability_ = false;
     int needle_faces_ = 0;  // most needles seen by an assembly so far
     double progress_ = 0;
+    double progress_offset_ = 0;
 };
+
+const HalfEdgeMesh& work_mesh(const HalfEdgeMesh& he, const HalfEdgeMesh& work, bool virtual_mode) {
+    return virtual_mode ? work : he;
+}
+
+void Run::explicit_step(const SparseOperator& op, const std::vector<char>& free,
+                        double lambda_dt, const char* system) {
+    const int n = op.size();
+    if (!warned_stability_) {
+        const double bound = explicit_bound(op, free, options_.order);
+        if (lambda_dt > bound) {
+            warn("explicit integration: lambda*dt = " + number(lambda_dt) +
+                 " exceeds the stability bound " + number(bound) + " of this mesh (" + system +
+                 "); expect growing oscillations, or use implicit integration");
+            warned_stability_ = true;
+            result_.explicit_unstable = true;
+        }
+    }
+    Positions lx, llx;
+    op.apply_l(x_, lx);
+    double sign = 1;
+    if (options_.order == 2) {  // X' = (I - lambda_dt L P L) X, L = 0 at fixed vertices
+        for (int i = 0; i < n; ++i)
+            if (!free[i]) lx.row(i).setZero();
+        op.apply_l(lx, llx);
+        lx.swap(llx);
+        sign = -1;
+    }
+    for (int i = 0; i < n; ++i)
+        if (free[i]) x_.row(i) += sign * lambda_dt * (i < n_ ? weight_[i] : 1.0) * lx.row(i);
+}
+
+void Run::record(const SolveStats& stats, int step, const char* system) {
+    SolveReport report;
+    report.step = step;
+    report.system = system;
+    report.iterations = stats.iterations;
+    report.inner_iterations = stats.inner_iterations;
+    report.factored = stats.factored;
+    report.residual = stats.residual;
+    report.converged = stats.converged;
+    result_.solves.push_back(report);
+    result_.total_iterations += stats.iterations;
+    result_.total_inner_iterations += stats.inner_iterations;
+    result_.max_residual = std::max(result_.max_residual, stats.residual);
+    if (stats.converged) return;
+    const std::string what =
+        "the linear solve (" + std::string(system) + ", step " + std::to_string(step + 1) +
+        ") did not converge in " + std::to_string(stats.iterations) + " iterations: residual " +
+        number(stats.residual) + ", tolerance " + number(options_.tolerance) +
+        (needle_faces_ > 0
+             ? " (" + detail::count_of(needle_faces_, "face is a needle", "faces are needles") +
+                   ", with an angle below 1e-4 rad: their cotangent weights make the system "
+                   "ill-conditioned; MeshLab's 'Remove T-Vertices by Edge Flip' or 'Merge Close "
+                   "Vertices' repairs them)"
+             : std::string());
+    if (!options_.accept_unconverged)
+        throw Error(what + ". Raise the iteration cap or the tolerance, or use a smaller "
+                           "time step; the mesh was left unchanged");
+    warn(what + "; the unconverged result was kept as asked");
+}
 
 void Run::integrate(const SparseOperator& op, const std::vector<char>& free, double lambda_dt,
                     int step, const char* system) {
-    const int n = op.size();
     if (options_.integration == Integration::Explicit) {
-        if (!warned_stability_) {
-            const double bound = explicit_bound(op, free, options_.order);
-            if (lambda_dt > bound) {
-                warn("explicit integration: lambda*dt = " + number(lambda_dt) +
-                     " exceeds the stability bound " + number(bound) + " of this mesh (" +
-                     system + "); expect growing oscillations, or use implicit integration");
-                warned_stability_ = true;
-            }
-        }
-        Positions lx, llx;
-        op.apply_l(x_, lx);
-        double sign = 1;
-        if (options_.order == 2) {  // X' = (I - lambda_dt L P L) X, L = 0 at fixed vertices
-            for (int i = 0; i < n; ++i)
-                if (!free[i]) lx.row(i).setZero();
-            op.apply_l(lx, llx);
-            lx.swap(llx);
-            sign = -1;
-        }
-        for (int i = 0; i < n; ++i)
-            if (free[i]) x_.row(i) += sign * lambda_dt * (i < n_ ? weight_[i] : 1.0) * lx.row(i);
+        explicit_step(op, free, lambda_dt, system);
         SolveReport report;
         report.step = step;
         report.system = system;
         result_.solves.push_back(report);
         return;
     }
-
+    const int n = op.size();
     LinearSystem linear;
     linear.op = &op;
     linear.free = free;
@@ -216,39 +282,7 @@ void Run::integrate(const SparseOperator& op, const std::vector<char>& free, dou
             report_progress(std::min(1.0, (step + std::min(1.0, f)) / steps));
         };
     }
-    const SolveStats stats = solve(linear, x_, settings);
-
-    SolveReport report;
-    report.step = step;
-    report.system = system;
-    report.iterations = stats.iterations;
-    report.inner_iterations = stats.inner_iterations;
-    report.factored = stats.factored;
-    report.residual = stats.residual;
-    report.converged = stats.converged;
-    result_.solves.push_back(report);
-    result_.total_iterations += stats.iterations;
-    result_.total_inner_iterations += stats.inner_iterations;
-    result_.max_residual = std::max(result_.max_residual, stats.residual);
-    if (!stats.converged) {
-        const std::string what = "the linear solve (" + std::string(system) + ", step " +
-                                 std::to_string(step + 1) + ") did not converge in " +
-                                 std::to_string(stats.iterations) + " iterations: residual " +
-                                 number(stats.residual) + ", tolerance " +
-                                 number(options_.tolerance) +
-                                 (needle_faces_ > 0
-                                      ? " (" + detail::count_of(needle_faces_, "face is a needle",
-                                                                "faces are needles") +
-                                            ", with an angle below 1e-4 rad: their cotangent "
-                                            "weights make the system ill-conditioned; MeshLab's "
-                                            "'Remove T-Vertices by Edge Flip' or 'Merge Close "
-                                            "Vertices' repairs them)"
-                                      : std::string());
-        if (!options_.accept_unconverged)
-            throw Error(what + ". Raise the iteration cap or the tolerance, or use a smaller "
-                               "time step; the mesh was left unchanged");
-        warn(what + "; the unconverged result was kept as asked");
-    }
+    record(solve(linear, x_, settings), step, system);
 }
 
 void Run::restore() {
@@ -262,7 +296,7 @@ void Run::restore() {
     }
 }
 
-Result Run::run() {
+void Run::check_input() {
     const ValidationReport& report = he_.report();
     result_.isolated_vertices = report.isolated_vertices;
     result_.zero_area_faces = report.zero_area_faces;
@@ -275,18 +309,19 @@ Result Run::run() {
                     detail::count_of(static_cast<long long>(mesh_.triangles.size()), "face",
                                      "faces") +
                     " given): there is nothing to smooth");
-
-    const BoundaryMode boundary = options_.boundary;
-    virtual_mode_ = boundary == BoundaryMode::VirtualVertex && !he_.boundary_loops().empty();
+    virtual_mode_ =
+        options_.boundary == BoundaryMode::VirtualVertex && !he_.boundary_loops().empty();
     if (virtual_mode_ && report.nonmanifold_vertices > 0)
         throw Error(detail::count_of(report.nonmanifold_vertices, "boundary vertex is",
                                      "boundary vertices are") +
                     " non-manifold (several boundary loops meet there), so the virtual-vertex "
-                    "boundary mode cannot close the holes; run MeshLab's 'Repair non Manifold "
-                    "Vertices' filter first, or choose another boundary mode");
+                    "boundary mode cannot close the holes",
+                    Repair::NonManifoldVertices, "choose another boundary mode");
+}
 
-    // Work on coordinates centred on the bounding box: the stopping rule and the volume are
-    // then as accurate far from the origin as near it.
+// Work on coordinates centred on the bounding box: the stopping rule and the volume are then as
+// accurate far from the origin as near it.
+Eigen::RowVector3d Run::centre() {
     Eigen::RowVector3d lo = Eigen::RowVector3d::Constant(INFINITY), hi = -lo;
     for (int i = 0; i < n_; ++i)
         if (!he_.is_isolated(i)) {
@@ -295,39 +330,37 @@ Result Run::run() {
         }
     const Eigen::RowVector3d origin = 0.5 * (lo + hi);
     x_ = mesh_.positions.rowwise() - origin;
+    return origin;
+}
 
-    const double mean_edge = mean_edge_length(he_, x_, options_.threads);
-    const bool has_units = options_.op != Operator::Umbrella && !options_.normalized;
-    // L is in 1/length^2 (L^2 in 1/length^4) for all but the dimensionless operators.
-    const double length_unit = std::pow(mean_edge, 2 * options_.order);
-    const double lambda_dt = options_.time_step * (has_units ? length_unit : 1.0);
-    const double curve_lambda_dt = options_.time_step * length_unit;
-    result_.lambda_dt = lambda_dt;
-
-    // Who may move, in the surface system and in the restoration.
-    std::vector<char> free_surface(n_, 1), free_curve(n_, 0);
+// Who may move, in the surface system, the boundary curve's and in the restoration.
+void Run::set_free_masks() {
+    const BoundaryMode boundary = options_.boundary;
+    free_surface_.assign(n_, 1);
+    free_curve_.assign(n_, 0);
     restorable_.assign(n_, 1);
     for (int i = 0; i < n_; ++i) {
         const bool pinned = hard_[i] || he_.is_isolated(i) ||
                             (boundary == BoundaryMode::Fixed && he_.is_boundary_vertex(i));
         restorable_[i] = !pinned;
-        free_surface[i] = !pinned && !(boundary == BoundaryMode::SmoothCurve &&
-                                        he_.is_boundary_vertex(i));
-        free_curve[i] = !pinned && boundary == BoundaryMode::SmoothCurve &&
-                        he_.is_boundary_vertex(i);
+        free_surface_[i] = !pinned && !(boundary == BoundaryMode::SmoothCurve &&
+                                         he_.is_boundary_vertex(i));
+        free_curve_[i] = !pinned && boundary == BoundaryMode::SmoothCurve &&
+                         he_.is_boundary_vertex(i);
     }
-    for (int v : he_.nonmanifold_vertices()) free_curve[v] = 0;
+    for (int v : he_.nonmanifold_vertices()) free_curve_[v] = 0;
+}
 
-    std::vector<Triangle> work_faces;
-    if (virtual_mode_) {
-        work_faces = he_.faces();
-        add_virtual_vertices(he_, x_, work_faces);
-        work_ = HalfEdgeMesh::build(x_, work_faces, options_.threads);
-        free_surface.resize(x_.rows(), 1);
-    }
-    const HalfEdgeMesh& work = virtual_mode_ ? work_ : he_;
+void Run::add_virtual_mode() {
+    if (!virtual_mode_) return;
+    std::vector<Triangle> work_faces = he_.faces();
+    add_virtual_vertices(he_, x_, work_faces);
+    work_ = HalfEdgeMesh::build(x_, work_faces, options_.threads);
+    free_surface_.resize(x_.rows(), 1);
+}
 
-    // Invariants to keep, per component (sections 3.1-3.2).
+// Invariants to keep, per component (sections 3.1-3.2).
+void Run::set_targets() {
     const auto& components = he_.components();
     target_.assign(components.size(), 0.0);
     result_.components.resize(components.size());
@@ -338,44 +371,98 @@ Result Run::run() {
         cr.faces = static_cast<int>(comp.faces.size());
         cr.closed = comp.closed();
         for (int v : comp.vertices) cr.has_fixed = cr.has_fixed || !restorable_[v];
-        cr.measure_before = cr.closed ? component_volume(he_, comp, x_) : component_area(he_, comp, x_);
+        cr.measure_before =
+            cr.closed ? component_volume(he_, comp, x_) : component_area(he_, comp, x_);
         if (!options_.preserve_volume) continue;
         if (cr.closed) target_[c] = cr.measure_before;
         else if (options_.open_invariant == OpenInvariant::Area) target_[c] = cr.measure_before;
         else ++open_unrestored;
     }
     if (open_unrestored > 0)
-        warn(detail::count_of(open_unrestored, "open component encloses", "open components enclose") +
+        warn(detail::count_of(open_unrestored, "open component encloses",
+                              "open components enclose") +
              " no volume: nothing was restored there (choose Area for open components to keep "
              "their surface area)");
+}
 
-    std::vector<char> ever_free(n_, 0);
+void Run::assemble_surface() {
+    AssemblyReport assembly;
+    surface_ = assemble(options_.op, work_mesh(he_, work_, virtual_mode_), x_,
+                        options_.normalized, &assembly, options_.threads);
+    worst_.zero_area_faces = std::max(worst_.zero_area_faces, assembly.zero_area_faces);
+    worst_.floored_edges = std::max(worst_.floored_edges, assembly.floored_edges);
+    worst_.massless_vertices = std::max(worst_.massless_vertices, assembly.massless_vertices);
+    needle_faces_ = std::max(needle_faces_, assembly.needle_faces);
+    if (options_.boundary == BoundaryMode::SmoothCurve)
+        curve_ = assemble_boundary_curve(he_, x_, options_.threads);
+    surface_.threads = detail::threads_for(surface_.size(), options_.threads);
+    curve_.threads = detail::threads_for(curve_.size(), options_.threads);
+}
+
+// The surface system's unknowns: free and with mass.
+std::vector<char> Run::surface_free() const {
+    std::vector<char> free = free_surface_;
+    for (int i = 0; i < surface_.size(); ++i)
+        if (!(surface_.mass[i] > 0)) free[i] = 0;
+    return free;
+}
+
+// The given time step, or the automatic one, estimated on the first step's surface system.
+void Run::choose_time_step() {
+    result_.automatic_time_step = !options_.time_step.has_value();
+    if (!result_.automatic_time_step) {
+        time_step_ = *options_.time_step;
+        return;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    const bool has_units = options_.op != Operator::Umbrella && !options_.normalized;
+    const std::vector<char> free = surface_free();
+    detail::StrengthProblem problem;
+    problem.op = &surface_;
+    problem.free = &free;
+    problem.weight = &weight_;
+    problem.x = &x_;
+    problem.mesh = &he_;
+    problem.data_vertices = n_;
+    problem.length_unit = has_units ? length_unit_ : 1.0;
+    problem.order = options_.order;
+    problem.steps = std::max(1, options_.steps);
+    problem.explicit_integration = options_.integration == Integration::Explicit;
+    if (problem.explicit_integration)
+        problem.max_time_step = explicit_bound(surface_, free, options_.order) / problem.length_unit;
+    // The estimate costs about as much as one solve: a third of the progress range.
+    constexpr double kShare = 1.0 / 3;
+    if (options_.progress) problem.progress = [this](double f) { report_progress(kShare * f); };
+    const detail::StrengthEstimate e = detail::estimate_strength(problem);
+    progress_offset_ = std::max(progress_, kShare);
+    time_step_ = e.time_step;
+    result_.noise_level = e.noise_level;
+    result_.noise_level_edges = mean_edge_ > 0 ? e.noise_level / mean_edge_ : 0.0;
+    result_.trace_fraction = e.trace_fraction;
+    result_.strength_iterations = e.lanczos_steps;
+    result_.strength_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void Run::take_steps() {
+    const bool has_units = options_.op != Operator::Umbrella && !options_.normalized;
+    const double lambda_dt = time_step_ * (has_units ? length_unit_ : 1.0);
+    const double curve_lambda_dt = time_step_ * length_unit_;
+    result_.lambda_dt = lambda_dt;
+    result_.time_step = time_step_;
     const int steps = lambda_dt > 0 ? options_.steps : 0;
     const bool recompute = options_.op != Operator::Umbrella && !options_.freeze_operator;
-    SparseOperator surface, curve;
-    AssemblyReport assembly, worst;
+    const bool curve = options_.boundary == BoundaryMode::SmoothCurve && !he_.boundary_loops().empty();
+    ever_free_.assign(n_, 0);
     for (int step = 0; step < steps; ++step) {
-        if (step == 0 || recompute) {
-            surface = assemble(options_.op, work, x_, options_.normalized, &assembly,
-                               options_.threads);
-            worst.zero_area_faces = std::max(worst.zero_area_faces, assembly.zero_area_faces);
-            worst.floored_edges = std::max(worst.floored_edges, assembly.floored_edges);
-            worst.massless_vertices = std::max(worst.massless_vertices, assembly.massless_vertices);
-            needle_faces_ = std::max(needle_faces_, assembly.needle_faces);
-            if (boundary == BoundaryMode::SmoothCurve)
-                curve = assemble_boundary_curve(he_, x_, options_.threads);
-            surface.threads = detail::threads_for(surface.size(), options_.threads);
-            curve.threads = detail::threads_for(curve.size(), options_.threads);
+        if (step > 0 && recompute) assemble_surface();
+        if (curve) {
+            for (int i = 0; i < n_; ++i) ever_free_[i] |= free_curve_[i];
+            integrate(curve_, free_curve_, curve_lambda_dt, step, "boundary curve");
         }
-        if (boundary == BoundaryMode::SmoothCurve && !he_.boundary_loops().empty()) {
-            for (int i = 0; i < n_; ++i) ever_free[i] |= free_curve[i];
-            integrate(curve, free_curve, curve_lambda_dt, step, "boundary curve");
-        }
-        std::vector<char> free = free_surface;
-        for (int i = 0; i < surface.size(); ++i)
-            if (!(surface.mass[i] > 0)) free[i] = 0;
-        for (int i = 0; i < n_; ++i) ever_free[i] |= free[i];
-        integrate(surface, free, lambda_dt, step, "surface");
+        const std::vector<char> free = surface_free();
+        for (int i = 0; i < n_; ++i) ever_free_[i] |= free[i];
+        integrate(surface_, free, lambda_dt, step, "surface");
         if (!x_.allFinite())
             throw Error("step " + std::to_string(step + 1) +
                         " produced non-finite positions; the mesh was left unchanged (with "
@@ -384,14 +471,16 @@ Result Run::run() {
         ++result_.steps;
         report_progress(static_cast<double>(step + 1) / steps);
     }
+}
 
-    // Vertices that may not move keep their input coordinates bit for bit. The copy is made only
-    // now, when the solver's vectors are gone, to keep the peak memory down.
+// Vertices that may not move keep their input coordinates bit for bit. The copy is made only
+// now, when the solver's vectors are gone, to keep the peak memory down.
+void Run::finish(const Eigen::RowVector3d& origin) {
     result_.positions = mesh_.positions;
     int fixed = 0;
     for (int i = 0; i < n_; ++i) {
         if (he_.is_isolated(i)) continue;
-        if (!ever_free[i]) ++fixed;
+        if (!ever_free_[i]) ++fixed;
         // No step taken (time step 0): keep the input bits, not (p - origin) + origin.
         if (restorable_[i] && result_.steps > 0) result_.positions.row(i) = x_.row(i) + origin;
     }
@@ -400,6 +489,7 @@ Result Run::run() {
     result_.vertices_fixed = fixed;
     for (int i = 0; i < n_; ++i)
         if (result_.positions.row(i) != mesh_.positions.row(i)) ++result_.vertices_moved;
+    const auto& components = he_.components();
     for (std::size_t c = 0; c < components.size(); ++c) {
         ComponentReport& cr = result_.components[c];
         cr.measure_after = cr.closed ? component_volume(he_, components[c], x_)
@@ -409,37 +499,43 @@ Result Run::run() {
             result_.volume_after += cr.measure_after;
         }
     }
-
-    if (steps > 0 && std::none_of(ever_free.begin(), ever_free.end(), [](char f) { return f != 0; }))
+    if (result_.steps > 0 &&
+        std::none_of(ever_free_.begin(), ever_free_.end(), [](char f) { return f != 0; }))
         warn("no vertex was free to move: all " +
-             detail::count_of(n_ - report.isolated_vertices, "vertex", "vertices") +
+             detail::count_of(n_ - he_.report().isolated_vertices, "vertex", "vertices") +
              " in faces are fixed (on a fixed boundary, unselected, of weight 0, or with only "
              "degenerate faces around them); the mesh is unchanged");
-    {
-        // Duplicated vertices split the surface into open pieces whose boundaries coincide, so
-        // boundary vertices at exactly the position of another one give them away (checking
-        // the boundary only keeps this off the cost of closed meshes).
-        std::vector<int> order;
-        for (int i = 0; i < n_; ++i)
-            if (he_.is_boundary_vertex(i)) order.push_back(i);
-        const auto less = [&](int a, int b) {
-            for (int k = 0; k < 3; ++k)
-                if (mesh_.positions(a, k) != mesh_.positions(b, k))
-                    return mesh_.positions(a, k) < mesh_.positions(b, k);
-            return false;
-        };
-        std::sort(order.begin(), order.end(), less);
-        int coincident = 0;
-        for (std::size_t k = 0; k < order.size(); ++k)
-            if ((k > 0 && !less(order[k - 1], order[k])) ||
-                (k + 1 < order.size() && !less(order[k], order[k + 1])))
-                ++coincident;
-        if (coincident > 0)
-            warn(detail::count_of(coincident, "vertex shares its position",
-                                  "vertices share their position") +
-                 " with another vertex (duplicated vertices split the surface into open pieces; "
-                 "MeshLab's 'Remove Duplicate Vertices' merges them)");
-    }
+}
+
+// Duplicated vertices split the surface into open pieces whose boundaries coincide, so boundary
+// vertices at exactly the position of another one give them away (checking the boundary only
+// keeps this off the cost of closed meshes).
+int coincident_boundary_vertices(const HalfEdgeMesh& he, const Positions& p) {
+    std::vector<int> order;
+    for (int i = 0; i < he.num_vertices(); ++i)
+        if (he.is_boundary_vertex(i)) order.push_back(i);
+    const auto less = [&](int a, int b) {
+        for (int k = 0; k < 3; ++k)
+            if (p(a, k) != p(b, k)) return p(a, k) < p(b, k);
+        return false;
+    };
+    std::sort(order.begin(), order.end(), less);
+    int coincident = 0;
+    for (std::size_t k = 0; k < order.size(); ++k)
+        if ((k > 0 && !less(order[k - 1], order[k])) ||
+            (k + 1 < order.size() && !less(order[k], order[k + 1])))
+            ++coincident;
+    return coincident;
+}
+
+void Run::warn_about_input() {
+    const ValidationReport& report = he_.report();
+    const int coincident = coincident_boundary_vertices(he_, mesh_.positions);
+    if (coincident > 0)
+        warn(detail::count_of(coincident, "vertex shares its position",
+                              "vertices share their position") +
+             " with another vertex (duplicated vertices split the surface into open pieces; "
+             "MeshLab's 'Remove Duplicate Vertices' merges them)");
     if (report.dropped_faces > 0)
         warn(detail::count_of(report.dropped_faces, "face repeats", "faces repeat") +
              " a vertex and was left out (MeshLab's 'Remove Zero Area Faces' deletes them)");
@@ -454,18 +550,38 @@ Result Run::run() {
         warn(detail::count_of(report.inconsistent_edges, "edge joins", "edges join") +
              " faces of opposite orientation; their components are treated as open (run "
              "MeshLab's 'Re-Orient all faces coherentely')");
-    if (report.nonmanifold_vertices > 0 && boundary == BoundaryMode::SmoothCurve)
+    if (report.nonmanifold_vertices > 0 && options_.boundary == BoundaryMode::SmoothCurve)
         warn(detail::count_of(report.nonmanifold_vertices, "non-manifold boundary vertex was",
                               "non-manifold boundary vertices were") +
              " kept out of the boundary-curve smoothing");
-    if (worst.floored_edges > 0)
-        warn(detail::count_of(worst.floored_edges, "edge is", "edges are") +
+    if (worst_.floored_edges > 0)
+        warn(detail::count_of(worst_.floored_edges, "edge is", "edges are") +
              " shorter than 1e-4 of the mean edge (duplicated vertices?); their weight was "
              "bounded (MeshLab's 'Merge Close Vertices' repairs this)");
-    if (worst.massless_vertices > 0)
-        warn(detail::count_of(worst.massless_vertices, "vertex has", "vertices have") +
+    if (worst_.massless_vertices > 0)
+        warn(detail::count_of(worst_.massless_vertices, "vertex has", "vertices have") +
              " only degenerate faces around it and was kept in place");
+}
 
+Result Run::run() {
+    check_input();
+    const Eigen::RowVector3d origin = centre();
+    mean_edge_ = mean_edge_length(he_, x_, options_.threads);
+    result_.mean_edge_length = mean_edge_;
+    // L is in 1/length^2 (L^2 in 1/length^4) for all but the dimensionless operators.
+    length_unit_ = std::pow(mean_edge_, 2 * options_.order);
+    set_free_masks();
+    add_virtual_mode();
+    set_targets();
+    // The first step's operators (also what the automatic strength is estimated on).
+    const bool may_step = options_.steps > 0 && !(options_.time_step.has_value() &&
+                                                  *options_.time_step == 0);
+    if (may_step) assemble_surface();
+    if (may_step) choose_time_step();
+    else time_step_ = options_.time_step.value_or(0);
+    take_steps();
+    finish(origin);
+    warn_about_input();
     return result_;
 }
 

@@ -13,7 +13,7 @@
 // MeshLab's scalar, float by default; built with ENGINE_REFERENCE_DOUBLE it mirrors the CMeshO of
 // a double-precision MeshLab (MESHLAB_SCALAR=double, as pymeshlab is built).
 #include <fairing/fairing.h>
-#include <filter_parameters.h>
+#include <fairing_parameters/filter_parameters.h>
 #include <vcg_adapters/vcg_adapters.h>
 
 #include <vcg/complex/complex.h>

@@ -4,9 +4,10 @@
   mltest.py gen KIND OUT.ply [--seed N] [--quality none|halfx|ramp]
       KIND: sphere (closed, noisy icosphere), grid (open, noisy height field),
             twocomp (a noisy sphere and a noisy grid), nonmanifold (an edge shared by 3 faces)
-  mltest.py mlx OUT.mlx FILTER [--select-x-gt V] [name=value ...]
+  mltest.py mlx OUT.mlx FILTER [--select-x-gt V] [--old-labels] [name=value ...]
       an .mlx listing every parameter of FILTER (defaults overridden by name=value), optionally
-      preceded by MeshLab's stock "Conditional Vertex Selection" (condSelect "x > V").
+      preceded by MeshLab's stock "Conditional Vertex Selection" (condSelect "x > V");
+      --old-labels: with the enum labels of version 0.1.0 (L\u00b2 ...), as scripts saved then.
   mltest.py params [name=value ...]      the full parameter list as name=value lines
   mltest.py mlxparams FILE.mlx            the parameters of the script's last filter, one
                                           name=value per line (as engine_reference takes them)
@@ -26,7 +27,9 @@ FILTERS = {
     "curvature_flow": "Implicit Fairing: Curvature Flow",
 }
 
-ORDER = ["L (first order)", "L\u00b2 (second order, recommended)"]
+ORDER = ["L (first order)", "L2 (second order)"]
+# The labels of version 0.1.0, which .mlx scripts saved then carry (MeshLab reads the index)
+OLD_ORDER = ["L (first order)", "L\u00b2 (second order, recommended)"]
 # name, type, default, enum values
 PARAMS = [
     ("timeStep", "RichFloat", "1", None),  # per filter: see filter_parameters.h
@@ -236,13 +239,16 @@ def xml_escape(s):
             .replace('"', "&quot;"))
 
 
-def filter_lines(filt, overrides):
-    """The .mlx lines of one of our filters with every parameter (defaults overridden)."""
+def filter_lines(filt, overrides, old_labels=False):
+    """The .mlx lines of one of our filters with every parameter (defaults overridden);
+    old_labels: the enum labels of version 0.1.0."""
     if filt not in FILTERS:
         fail("unknown filter " + filt)
     values = param_values(overrides)
     lines = [' <filter name="%s">' % xml_escape(FILTERS[filt])]
     for name, typ, _, enum in PARAMS:
+        if old_labels and enum is ORDER:
+            enum = OLD_ORDER
         attrs = 'name="%s" type="%s" value="%s"' % (name, typ, xml_escape(values[name]))
         if enum is not None:
             attrs += ' enum_cardinality="%d"' % len(enum)
@@ -260,14 +266,14 @@ def write_script(out, filter_blocks):
         f.write("\n".join(lines))
 
 
-def write_mlx(out, filt, overrides, select_x_gt=None):
+def write_mlx(out, filt, overrides, select_x_gt=None, old_labels=False):
     lines = []
     if select_x_gt is not None:
         lines += [' <filter name="Conditional Vertex Selection">',
                   '  <Param name="condSelect" type="RichString" value="%s"/>'
                   % xml_escape("x > %s" % select_x_gt),
                   " </filter>"]
-    write_script(out, lines + filter_lines(filt, overrides))
+    write_script(out, lines + filter_lines(filt, overrides, old_labels))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -353,11 +359,16 @@ def main(argv):
                 pos.append(args[i]); i += 1
         gen(pos[0], pos[1], seed, quality)
     elif cmd == "mlx":
-        sel = None
-        if len(args) > 2 and args[2] == "--select-x-gt":
-            sel = args[3]
-            args = args[:2] + args[4:]
-        write_mlx(args[0], args[1], args[2:], sel)
+        sel, old_labels, rest = None, False, []
+        i = 2
+        while i < len(args):
+            if args[i] == "--select-x-gt":
+                sel = args[i + 1]; i += 2
+            elif args[i] == "--old-labels":
+                old_labels = True; i += 1
+            else:
+                rest.append(args[i]); i += 1
+        write_mlx(args[0], args[1], rest, sel, old_labels)
     elif cmd == "params":
         for k, v in param_values(args).items():
             print("%s=%s" % (k, v))

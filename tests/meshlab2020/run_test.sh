@@ -3,6 +3,8 @@
 #   run_test.sh run FILTER MESH [--quality MODE] [--select-x-gt V] [name=value ...]
 #       generated noisy MESH -> real meshlabserver with an .mlx listing every parameter ->
 #       compared with engine_reference run on the same file (float rounding at most)
+#   run_test.sh old-labels FILTER MESH [name=value ...]   the same with a script that carries
+#       the enum labels of version 0.1.0
 #   run_test.sh quality-fixed FILTER          quality 0 vertices stay bit-identical
 #   run_test.sh selection FILTER              stock selection filter + "Affect only selection"
 #   run_test.sh failure                       non-manifold input: non-zero exit, input unchanged
@@ -36,7 +38,7 @@ run_case() {
         esac
     done
     mltest gen "$mesh" in.ply --quality "$quality"
-    mltest mlx run.mlx "$filter" "${sel[@]}" "$@"
+    mltest mlx run.mlx "$filter" "${sel[@]}" "${mlx_opts[@]}" "$@"
     echo "--- script"; cat run.mlx
     local mask=()
     [ "$quality" != none ] && mask=(-m vq)
@@ -50,7 +52,18 @@ run_case() {
     mltest compare out.ply ref.ply
 }
 
+mlx_opts=()
 case ${1:?case} in
+old-labels)
+    # a script saved with the labels of version 0.1.0 ("L² (second order, recommended)") still
+    # runs, and means what it meant: MeshLab reads the index, not the label
+    shift
+    mlx_opts=(--old-labels)
+    run_case "$@"
+    grep -q 'enum_val1="L² (second order, recommended)"' run.mlx \
+        || { echo "FAIL: the script does not carry the old label"; exit 1; }
+    mltest moved in.ply out.ply
+    ;;
 run)
     shift
     run_case "$@"
@@ -81,6 +94,9 @@ failure)
     [ ! -e out.ply ] || { echo "FAIL: an output was written"; exit 1; }
     grep -qi "non-manifold\|nonmanifold" server.log \
         || { echo "FAIL: the error message does not name the problem"; exit 1; }
+    # the repair filter by its menu entry in this MeshLab (2020.09's name)
+    grep -qF "run MeshLab's 'Repair non Manifold Edges by removing faces' filter (Filters > Cleaning and Repairing) first" server.log \
+        || { echo "FAIL: the error message does not name 2020.09's repair filter"; exit 1; }
     echo "failure: exit status $rc, input unchanged, no output, message:"
     grep -i "failed:" server.log || true
     ;;

@@ -9,7 +9,8 @@
 //
 //   list
 //       every filter of PLUGIN: python name, then one line per parameter
-//       "param <python name> <python type> <meshlab name> default=<value>"
+//       "param <python name> <python type> <meshlab name> default=<value>", followed for an
+//       enum by "labels <python name> <label>|<label>|..." (the strings pymeshlab accepts)
 //   apply IN.ply OUT.ply PYTHON_FILTER_NAME [--select-x-gt V] [--params-out FILE]
 //         [--expect-failure] [python_name=value ...]
 //       MeshSet.load_new_mesh(IN), MeshSet.apply_filter(NAME, **kwargs), save_current_mesh(OUT).
@@ -254,11 +255,16 @@ int cmdList()
         ++n;
         std::printf("filter %s <- '%s'\n", qUtf8Printable(f.pythonFunctionName()),
                     qUtf8Printable(f.meshlabFunctionName()));
-        for (const pymeshlab::FunctionParameter& p : f)
+        for (const pymeshlab::FunctionParameter& p : f) {
             std::printf("param %s %s %s default=%s\n", qUtf8Printable(p.pythonName()),
                         qUtf8Printable(p.pythonTypeString().replace(' ', '_')),
                         qUtf8Printable(p.meshlabName()),
                         qUtf8Printable(p.defaultValueString()));
+            if (p.richParameter().isOfType<RichEnum>())
+                std::printf("labels %s %s\n", qUtf8Printable(p.pythonName()),
+                            qUtf8Printable(dynamic_cast<const RichEnum&>(p.richParameter())
+                                               .enumvalues.join('|')));
+        }
     }
     if (n != 3) fail("expected 3 implicit fairing filters in the function set, found " + std::to_string(n));
     return 0;

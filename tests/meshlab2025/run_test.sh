@@ -9,7 +9,9 @@
 #       figures match the reference's. SELECT_X_GT=V in the environment selects x > V first.
 #   run_test.sh quality-fixed FILTER      quality 0 vertices stay bit-identical
 #   run_test.sh selection FILTER          selected x > 0.25, only those move
-#   run_test.sh failure                   non-manifold input: the error comes back, mesh unchanged
+#   run_test.sh failure                   non-manifold input: the error comes back, mesh unchanged,
+#                                         the repair filter named in this host's words
+#   run_test.sh warnings                  an explicit step past its bound: flagged in the dict
 #   run_test.sh reject                    the other precision's binary is refused with the
 #                                         host's message
 # Environment (set by CMake): PREC (float|double), HOST, ENGINE_REFERENCE, PLUGIN, OTHER_PLUGIN,
@@ -35,15 +37,17 @@ for line in open(sys.argv[1], encoding="utf-8"):
     w = line.split()
     if len(w) == 4 and w[0] == "output":
         out[w[1]] = (w[2], w[3])
+# every key the docs list, of a type pymeshlab's toPyDict turns into a Python value
 expect = {"iterations": "int", "inner_iterations": "int", "steps": "int", "vertices_moved": "int", "vertices_fixed": "int",
           "residual": "double", "volume_before": "double", "volume_after": "double",
-          "lambda_dt": "double", "seconds": "double", "engine_seconds": "double"}
+          "lambda_dt": "double", "seconds": "double", "engine_seconds": "double",
+          "warnings": "int", "unconverged_solves": "int", "explicit_unstable": "bool"}
+if sorted(out) != sorted(expect):
+    print("FAIL: the output map has %s, expected %s" % (sorted(out), sorted(expect))); sys.exit(1)
 for k, t in expect.items():
-    if k not in out:
-        print("FAIL: the output map lacks %s (has %s)" % (k, sorted(out))); sys.exit(1)
     if out[k][0] != t:
         print("FAIL: %s is a %s, expected %s" % (k, out[k][0], t)); sys.exit(1)
-    if not math.isfinite(float(out[k][1])):
+    if t != "bool" and not math.isfinite(float(out[k][1])):
         print("FAIL: %s is not finite" % k); sys.exit(1)
 ref = open(sys.argv[2], encoding="utf-8").read()
 m = re.search(r"engine_reference: (\d+) vertices moved, (\d+) fixed, (\d+) CG iterations, "
@@ -115,6 +119,24 @@ for f, params in seen.items():
     if params != types:
         print("FAIL: %s parameters %r" % (f, params)); sys.exit(1)
 print("list: 3 filters, each with the 14 parameters %s" % ", ".join(sorted(types)))
+# pymeshlab matches an enum string exactly: every label must be typeable (printable ASCII), and
+# the labels keep their index order (.mlx scripts store the index)
+labels = {}
+for l in lines:
+    if l.startswith("labels "):
+        _, name, rest = l.split(" ", 2)
+        labels[name] = rest.split("|")
+want = {"order": ["L (first order)", "L2 (second order)"],
+        "integration": ["Implicit", "Explicit", "Explicit, normalized operator (section 5.5)"],
+        "openinvariant": ["None", "Area"],
+        "boundarymode": ["Fixed", "Smooth boundary curve", "Virtual vertex"]}
+if labels != want:
+    print("FAIL: enum labels %r, expected %r" % (labels, want)); sys.exit(1)
+for name, ls in labels.items():
+    for label in ls:
+        if not all(32 <= ord(c) < 127 for c in label):
+            print("FAIL: %s label %r is not plain ASCII" % (name, label)); sys.exit(1)
+print("labels: all plain ASCII, in index order")
 EOF
     ;;
 run)
@@ -142,11 +164,33 @@ failure)
         echo "FAIL: the input changed or an output was written"; exit 1
     fi
     # pymeshlab's message with the plugin's MLException text; the host compared the mesh
+    # the repair filter named as this host names it: pymeshlab (double) its python name, the
+    # GUI (float) its menu entry
+    if [ "$PREC" = double ]; then
+        repair="; run ms\.meshing_repair_non_manifold_edges() first\$"
+    else
+        repair="; run MeshLab's 'Repair non Manifold Edges' filter (Filters > Cleaning and Repairing) first\$"
+    fi
     for line in "^PyMeshLabException: Failed to apply filter: ${PYNAME[umbrella]}\$" \
-                "^Details: .*non-manifold edge" "^mesh unchanged after the failure"; do
+                "^Details: 1 non-manifold edge .*$repair" "^mesh unchanged after the failure"; do
         grep -q "$line" host.log || { echo "FAIL: no line matching '$line'"; exit 1; }
     done
     if grep -q "^output " host.log; then echo "FAIL: figures returned by a failed run"; exit 1; fi
+    ;;
+warnings)
+    # a warning that changes the result reaches a non-verbose pymeshlab user (whose log and
+    # stderr pymeshlab silences) through the returned dict: explicit steps past their bound
+    mltest gen sphere in.ply
+    host apply "$work/in.ply" "$work/out.ply" "${PYNAME[umbrella]}" integration=Explicit \
+        order=0 timestep=3 | tee host.log
+    for line in "^output explicit_unstable bool true\$" "^output warnings int [1-9][0-9]*\$" \
+                "^output unconverged_solves int 0\$"; do
+        grep -q "$line" host.log || { echo "FAIL: no line matching '$line'"; exit 1; }
+    done
+    host apply "$work/in.ply" "$work/out.ply" "${PYNAME[umbrella]}" | tee clean.log
+    for line in "^output explicit_unstable bool false\$" "^output warnings int 0\$"; do
+        grep -q "$line" clean.log || { echo "FAIL: a clean run: no line matching '$line'"; exit 1; }
+    done
     ;;
 reject)
     host reject "$OTHER_PLUGIN" | tee host.log

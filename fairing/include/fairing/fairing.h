@@ -17,6 +17,10 @@
 //   units; for the umbrella and the normalized operators (L dimensionless) lambda_dt =
 //   time_step. The boundary curve (eq. 11 on the loop) is scaled like the scale-dependent
 //   operator. Result::lambda_dt reports the value used.
+// - Automatic strength (Options::time_step left empty, the default): the time step minimizing
+//   Stein's unbiased estimate of the error along the normals, from the input alone
+//   (src/auto_strength.h). Result::time_step, noise_level and the other strength fields report
+//   the choice. A given time step is used as is.
 // - fair() throws fairing::Error on refusal (bad input, failed solve, non-finite values); the
 //   caller's data is untouched because it only ever receives positions from a finished run.
 #pragma once
@@ -62,14 +66,36 @@ enum class Preconditioner {
     Factored,   // L^2 only: two first-order solves per iteration, iterations grow as lambda_dt^1/4
 };
 
+// A double or nothing: std::optional<double> for the C++14 callers of this header (MeshLab
+// 2020.09 plugins are built as gnu++14, which has no <optional>). Same member names.
+class OptionalDouble {
+public:
+    OptionalDouble() = default;                       // empty
+    OptionalDouble(double value) : has_(true), value_(value) {}  // NOLINT: assign a number
+    bool has_value() const { return has_; }
+    explicit operator bool() const { return has_; }
+    double operator*() const { return value_; }
+    double value() const {
+        if (!has_) throw Error("no value: the time step is automatic");
+        return value_;
+    }
+    double value_or(double fallback) const { return has_ ? value_ : fallback; }
+    void reset() { *this = OptionalDouble(); }
+
+private:
+    bool has_ = false;
+    double value_ = 0;
+};
+
 struct Options {
     Operator op = Operator::CurvatureFlow;
     Integration integration = Integration::Implicit;
     // 1: diffusion with L (eq. 6). 2: with L^2, (I + lambda_dt L^2) X' = X (section 2.6), the
     // paper's recommendation and the better denoiser.
     int order = 2;
-    // Dimensionless; see the conventions above. Must be finite and >= 0.
-    double time_step = 1.0;
+    // Dimensionless; see the conventions above. Must be finite and >= 0. Empty (the default):
+    // chosen from the mesh (automatic strength, see the conventions above).
+    OptionalDouble time_step;
     int steps = 1;
     // Section 4.3: keep the coefficients of the first step for all steps (smoothing "relative to
     // the initial mesh"). Off: coefficients are recomputed from the current mesh at each step.
@@ -144,6 +170,19 @@ struct ComponentReport {
 struct Result {
     Positions positions;            // the new positions, one row per input vertex
     double lambda_dt = 0;           // absolute lambda*dt used per step
+    double time_step = 0;           // the dimensionless time step used (chosen or given)
+    bool automatic_time_step = false;  // chosen from the mesh (Options::time_step empty)
+    // Automatic strength only (0 otherwise): the estimated standard deviation of the noise
+    // along the normals, in the mesh's units and in mean edge lengths.
+    double noise_level = 0;
+    double noise_level_edges = 0;
+    double mean_edge_length = 0;
+    // Automatic strength only: tr H / N of the chosen filter H on the free vertices (its
+    // effective degrees of freedom per vertex: 1 keeps everything, 0 smooths everything away),
+    // the Lanczos steps spent and the seconds spent choosing (included in `seconds`).
+    double trace_fraction = 0;
+    int strength_iterations = 0;
+    double strength_seconds = 0;
     int steps = 0;
     std::vector<SolveReport> solves;
     int total_iterations = 0;
@@ -159,6 +198,7 @@ struct Result {
     int dropped_faces = 0;          // faces repeating a vertex index: left out
     int inconsistent_edges = 0;     // edges whose two faces disagree on orientation
     int boundary_loops = 0;
+    bool explicit_unstable = false;  // an explicit step exceeded its stability bound
     std::vector<std::string> warnings;
     double seconds = 0;             // the whole of fair(): validation, assembly, solves
 };

@@ -77,6 +77,8 @@ public:
                               int threads = 1);
 
 private:
+    struct Build;  // the passes of build() (half_edge.cpp)
+
     std::vector<Triangle> faces_;
     std::vector<int> input_face_;
     std::vector<int> twin_;

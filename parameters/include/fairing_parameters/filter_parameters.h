@@ -1,7 +1,7 @@
 // The filters' parameters, host-neutral: their internal names (what .mlx scripts and, lower-
 // cased, pymeshlab use), enum labels, defaults, and the one translation into fairing::Options.
-// The MeshLab plugin, the test reference tool and the command-line tool all go through here, so
-// a parameter means the same thing everywhere. No Qt, no vcg.
+// The MeshLab plugin, the tests' reference tools and the command-line tool all go through here,
+// so a parameter means the same thing everywhere. No Qt, no vcg.
 #pragma once
 
 #include <fairing/fairing.h>
@@ -27,10 +27,13 @@ constexpr const char* kMaxIterations = "maxIterations";
 constexpr const char* kFreezeOperator = "freezeOperator";
 constexpr const char* kAcceptUnconverged = "acceptUnconverged";
 
-// Enum labels, in index order (UTF-8).
+// Enum labels, in index order. Plain ASCII, because pymeshlab users type them: pymeshlab
+// matches a string argument to a label exactly (QStringList::indexOf) and also takes the index.
+// .mlx scripts store the index, so a label may change its words but never its position: the
+// second order was labelled "L\xc2\xb2 (second order, recommended)" until 0.1.0, and scripts
+// saved then still run.
 inline const std::vector<std::string>& orderLabels() {
-    static const std::vector<std::string> v = {"L (first order)",
-                                               "L\xc2\xb2 (second order, recommended)"};
+    static const std::vector<std::string> v = {"L (first order)", "L2 (second order)"};
     return v;
 }
 inline const std::vector<std::string>& integrationLabels() {

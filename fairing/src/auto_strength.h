@@ -1,0 +1,88 @@
+// Automatic strength: the time step that minimizes Stein's unbiased risk estimate (SURE) of the
+// error along the normals, estimated from the noisy mesh alone (not installed).
+//
+// What it implements, and where from:
+// - One step (or `steps` steps with a frozen operator) is a linear filter on the free vertices.
+//   With D = M/w and C = -K (order 1) or K P M^-1 K (order 2) on the free rows (solver.h), the
+//   implicit system is D + lambda C = D^1/2 (I + lambda G) D^1/2, G = D^-1/2 C D^-1/2 symmetric
+//   positive semi-definite. With u = D^-1/2 (C x) (fixed-vertex terms included: C acts on every
+//   position), s implicit steps of tau = lambda/s move the free vertices by exactly
+//     r(lambda) = D^-1/2 phi(G) u,   phi(g) = (1 - (1 + tau g)^-s) / g,
+//   and filter the noise by H = D^-1/2 (I + tau G)^-s D^1/2 (explicit: (1 - tau g)^s, and
+//   phi(g) = (1 - (1 - tau g)^s) / g).
+// - The Lanczos process on G started at u (Golub & Meurant, "Matrices, Moments and
+//   Quadrature", 1994/2010) gives r(lambda) ~ |u| D^-1/2 V_k phi(T_k) e1 for every lambda at
+//   once; stochastic Lanczos quadrature with Rademacher probes (Hutchinson 1990; Ubaru, Chen &
+//   Saad, SIAM J. Matrix Anal. Appl. 38(4), 2017) gives tr H(lambda) for every lambda. The basis
+//   is never stored: a second pass regenerates it from the tridiagonal coefficients and
+//   accumulates the normal components of r on a grid of lambda.
+// - Risk (Stein 1981): with noise of standard deviation sigma along the normals n_i (in all
+//   directions: its normal component), and normals taken as fixed,
+//     E sum_i (n_i . (x'_i - f_i))^2 = sum_i (n_i . r_i)^2 + 2 sigma^2 tr H - N sigma^2,
+//   so the chosen lambda minimizes RSS_n(lambda) + 2 sigma^2 tr H(lambda). Tangential sliding
+//   (the umbrella evens out triangles) is no error and does not count.
+// - sigma is estimated robustly from the data (Donoho & Johnstone's 1.4826 x median absolute
+//   deviation, 1994) of the normal component of the uniform bi-Laplacian at every interior
+//   vertex, each divided by the exact norm of its own stencil; on a smooth surface the
+//   bi-Laplacian of the positions is of fourth order in the edge length, so curvature hardly
+//   inflates it.
+//
+// Conventions: lambda is the dimensionless time step of Options::time_step (C is scaled by the
+// operator's length unit); rows at or past `data_vertices` (virtual vertices) move with the
+// filter but are not data: they count neither in the risk nor in the trace. No time step at all
+// (0) is chosen when the estimated noise is 0 (a flat patch, an exactly smooth mesh).
+#pragma once
+
+#include "fairing/fairing.h"
+#include "fairing/half_edge.h"
+#include "fairing/operators.h"
+
+#include <functional>
+#include <vector>
+
+namespace fairing {
+namespace detail {
+
+struct StrengthProblem {
+    const SparseOperator* op = nullptr;       // the surface operator at the input positions
+    const std::vector<char>* free = nullptr;  // the surface system's unknowns (mass > 0)
+    const std::vector<double>* weight = nullptr;  // soft weights of the data vertices (w_i)
+    const Positions* x = nullptr;             // positions, virtual vertices after the data
+    const HalfEdgeMesh* mesh = nullptr;       // the data vertices' mesh (normals, noise)
+    int data_vertices = 0;
+    double length_unit = 1;  // lambda_dt = lambda * length_unit
+    int order = 1;
+    int steps = 1;
+    bool explicit_integration = false;
+    double max_time_step = 0;  // explicit: the stability bound (dimensionless); else unused
+    int threads = 1;
+    std::function<void(double)> progress;  // fraction of the estimate done, in [0, 1]
+};
+
+struct StrengthEstimate {
+    double time_step = 0;     // dimensionless
+    double noise_level = 0;   // sigma, in the mesh's units
+    int lanczos_steps = 0;
+    double trace_fraction = 1;  // tr H / N at the chosen time step: the share of noise kept
+    // The risk curve (for studies and tests, not for users).
+    std::vector<double> grid, rss, trace;
+    double data_count = 0;
+};
+
+// x moved `passes` times halfway to the mean of its one-ring (op's columns below `data`).
+Positions smoothed_copy(const SparseOperator& op, const Positions& x, int data, int passes);
+
+// Robust normals: area-weighted vertex normals averaged over the one-ring (so over two rings of
+// faces), unit length, 0 where undefined. One row per vertex of `mesh`.
+Positions robust_normals(const HalfEdgeMesh& mesh, const Positions& x);
+
+// sigma (mesh units) of the noise along the normals, from the vertices with use[i] whose two-ring
+// is interior (widened to all vertices when fewer than 16 qualify); 0 when none does. `op` gives
+// the one-rings (its weights are not used; columns at or past mesh.num_vertices() are ignored).
+double estimate_noise(const SparseOperator& op, const HalfEdgeMesh& mesh, const Positions& x,
+                      const Positions& normals, const std::vector<char>& use);
+
+StrengthEstimate estimate_strength(const StrengthProblem& problem);
+
+}  // namespace detail
+}  // namespace fairing

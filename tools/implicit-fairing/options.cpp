@@ -1,0 +1,251 @@
+#include "options.h"
+
+#include "common.h"
+
+#include <CLI/CLI.hpp>
+
+#include <climits>
+#include <cstdio>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#ifndef IMPLICIT_FAIRING_VERSION
+#define IMPLICIT_FAIRING_VERSION "unknown"
+#endif
+
+namespace implicit_fairing {
+namespace {
+
+using filter_parameters::Values;
+
+const std::map<std::string, fairing::Operator>& operatorNames()
+{
+    static const std::map<std::string, fairing::Operator> m = {
+        {"umbrella", fairing::Operator::Umbrella},
+        {"scale-dependent", fairing::Operator::ScaleDependent},
+        {"curvature", fairing::Operator::CurvatureFlow}};
+    return m;
+}
+
+// Word-wraps text at width columns (CLI11 2.1 does not wrap; it indents after '\n').
+std::string wrap(const std::string& text, std::size_t width)
+{
+    std::istringstream words(text);
+    std::string word, out;
+    std::size_t column = 0;
+    while (words >> word) {
+        if (column > 0 && column + 1 + word.size() > width) {
+            out += '\n';
+            column = 0;
+        } else if (column > 0) {
+            out += ' ';
+            ++column;
+        }
+        out += word;
+        column += word.size();
+    }
+    return out;
+}
+
+// An option whose value is one of a few names.
+void addChoice(CLI::App& app, const std::string& option, std::string& value,
+               const std::string& help, const std::vector<std::string>& names,
+               const char* typeName)
+{
+    app.add_option(option, value, help)->check(CLI::IsMember(names))->type_name(typeName);
+}
+
+void addFiles(CLI::App& app, CommandLine& cl)
+{
+    app.add_option("IN", cl.in,
+                   "Input mesh: .ply .obj .off .stl (by extension, any case). Polygons are "
+                   "triangulated; duplicate vertices of STL input are merged (STL stores every "
+                   "triangle separately).")
+        ->required()
+        ->check(CLI::ExistingFile);
+    app.add_option("OUT", cl.out,
+                   "Output mesh: .ply .obj .off .stl. Written only after success, through a "
+                   "temporary file in the same folder renamed over OUT (on failure an existing "
+                   "OUT is left untouched). May equal IN. Keeps what the input had and the format "
+                   "holds: PLY vertex quality, colours, normals (recomputed).")
+        ->required();
+}
+
+std::string timeStepDefaults()
+{
+    using filter_parameters::defaultTimeStep;
+    return "Default: " + formatNumber(defaultTimeStep(fairing::Operator::Umbrella)) +
+           " umbrella, " + formatNumber(defaultTimeStep(fairing::Operator::ScaleDependent)) +
+           " scale-dependent, " +
+           formatNumber(defaultTimeStep(fairing::Operator::CurvatureFlow)) + " curvature";
+}
+
+// The options that mirror a filter parameter: its .mlx name in brackets.
+void addFilterParameters(CLI::App& app, CommandLine& cl, const Values& d)
+{
+    addChoice(app, "--operator", cl.operatorName,
+              "umbrella (eq. 7, uniform weights), scale-dependent (eq. 11, Fujiwara's 1/|edge| "
+              "weights) or curvature (eq. 14, the cotangent curvature flow). Default: curvature",
+              {"umbrella", "scale-dependent", "curvature"}, "NAME");
+    app.add_option_function<double>(
+           "--time-step",
+           [&cl](double t) {
+               cl.timeStepGiven = true;
+               cl.timeStep = t;
+           },
+           "[timeStep] Dimensionless time step (>= 0): lambda*dt = T * (mean edge)^(2*order) "
+           "for scale-dependent and curvature, T for umbrella and --normalized. " +
+               timeStepDefaults() + " (the filters' defaults)")
+        ->type_name("T");
+    app.add_option("--steps", cl.steps,
+                   "[stepSmoothNum] Number of time steps. Default: " + std::to_string(d.steps))
+        ->type_name("N");
+    app.add_option("--order", cl.order,
+                   "[order] 1: diffusion with L; 2: with L^2 (section 2.6, recommended). "
+                   "Default: " + std::to_string(d.order + 1))
+        ->check(CLI::IsMember({1, 2}))
+        ->type_name("1|2");
+    app.add_flag("--explicit", cl.explicitIntegration,
+                 "[integration=Explicit] Forward Euler (eq. 8) instead of the implicit backward "
+                 "Euler (eq. 9); stable only for small time steps (a warning says when not). "
+                 "Default: implicit");
+    app.add_flag("--normalized", cl.normalized,
+                 "[integration=Explicit, normalized operator] Explicit integration with the "
+                 "normalized operator of section 5.5 (time step dimensionless, stable up to 1); "
+                 "implies --explicit. Default: off");
+    app.add_flag("--no-volume", cl.noVolume,
+                 "[preserveVolume=false] Do not restore the volume of closed components after "
+                 "each step (sections 3.1-3.2). Default: volume preserved");
+    app.add_flag("--area", cl.area,
+                 "[openInvariant=Area] Restore the surface area of open components (which "
+                 "enclose no volume) after each step. Default: open components are not restored");
+    addChoice(app, "--boundary", cl.boundary,
+              "[boundaryMode] fixed (boundary vertices stay), curve (section 5.3: boundary loops "
+              "smoothed as curves first) or virtual (a hidden vertex at each loop's barycentre). "
+              "Default: fixed",
+              {"fixed", "curve", "virtual"}, "MODE");
+    auto* weights = app.add_flag("--weights-from-quality", cl.qualityWeights,
+                                 "[qualityWeights] Per-vertex quality (PLY 'quality' property) as "
+                                 "smoothing weight (section 2.7), clamped to [0, 1]; 0 = the "
+                                 "vertex stays bit-identical. Default: off");
+    app.add_flag("--invert-weights", cl.invertWeights,
+                 "[invertQuality] Weight = 1 - clamped quality. Needs --weights-from-quality. "
+                 "Default: off")
+        ->needs(weights);
+    app.add_flag("--freeze", cl.freeze,
+                 "[freezeOperator] Keep the first step's coefficients for all steps (section "
+                 "4.3). Default: recomputed at each step");
+    app.add_option("--tolerance", cl.tolerance,
+                   "[tolerance] Conjugate-gradient stopping rule: ||A X - b|| < E ||b|| for x, y "
+                   "and z (> 0). Default: " + formatNumber(d.tolerance))
+        ->type_name("E");
+    app.add_option("--max-iterations", cl.maxIterations,
+                   "[maxIterations] Conjugate-gradient iteration cap per solve (>= 1). Default: " +
+                       std::to_string(d.maxIterations))
+        ->type_name("N");
+    app.add_flag("--accept-unconverged", cl.acceptUnconverged,
+                 "[acceptUnconverged] When the iteration cap is hit, keep the last iterate with a "
+                 "warning instead of failing. Default: fail");
+}
+
+// The options only the tool has.
+void addToolOptions(CLI::App& app, CommandLine& cl)
+{
+    addChoice(app, "--preconditioner", cl.preconditioner,
+              "auto, jacobi or factored. factored (order 2 only) preconditions the L^2 system "
+              "with two first-order solves per iteration: its cost grows as the 4th root of the "
+              "time step instead of the square root. auto starts with jacobi and switches when "
+              "the solve turns out heavy. Default: auto",
+              {"auto", "jacobi", "factored"}, "NAME");
+    app.add_option("--threads", cl.threads,
+                   "Threads for the solver on meshes of 50,000 vertices or more (smaller ones "
+                   "always use one): 0 = all cores (or OMP_NUM_THREADS). Default: 0")
+        ->check(CLI::Range(0, INT_MAX))
+        ->type_name("N");
+    app.add_flag("--json", cl.json,
+                 "Print one line of JSON on stdout (and nothing else there): vertices, faces, "
+                 "operator, steps, lambda_dt (absolute), cg_iterations, residual, volume_before, "
+                 "volume_after, seconds_engine (assembly + solve), seconds_total, and more. "
+                 "Default: a one-line summary");
+    app.add_flag("--ascii", cl.ascii, "Write PLY and STL as ASCII. Default: binary");
+    app.add_flag("-q,--quiet", cl.quiet,
+                 "No progress bar, summary or warnings (errors are still reported; --json still "
+                 "prints). Default: off");
+}
+
+}  // namespace
+
+int parseCommandLine(int argc, char** argv, CommandLine& cl)
+{
+    const Values d = filter_parameters::defaults(fairing::Operator::CurvatureFlow);
+    cl.steps = d.steps;
+    cl.order = d.order + 1;
+    cl.tolerance = d.tolerance;
+    cl.maxIterations = d.maxIterations;
+    cl.threads = fairing::Options().threads;
+
+    CLI::App app{"Implicit fairing (Desbrun, Meyer, Schroeder, Barr, SIGGRAPH 1999) of a "
+                 "triangle mesh: reads IN, smooths it, writes OUT. The options mirror the MeshLab "
+                 "filters \"Implicit Fairing: Umbrella Diffusion / Scale-Dependent Diffusion / "
+                 "Curvature Flow\" (their parameter names in brackets) and mean the same.",
+                 kTool};
+    app.set_version_flag("--version", std::string(kTool) + " " + IMPLICIT_FAIRING_VERSION);
+    app.get_formatter()->column_width(34);
+    addFiles(app, cl);
+    addFilterParameters(app, cl, d);
+    addToolOptions(app, cl);
+    for (CLI::Option* o : app.get_options()) o->description(wrap(o->get_description(), 64));
+    app.description(wrap(app.get_description(), 98));
+    app.footer(wrap("Coordinates are read into floats, as in MeshLab, so a run gives the "
+                    "positions the MeshLab filter gives. vcglib writes OBJ with 6 decimals and "
+                    "OFF with 7 significant digits; PLY and STL keep floats exactly. A progress "
+                    "bar is drawn on stderr when it is a terminal. Exit status: 0 on success, 1 "
+                    "when the run fails, 2 for a usage error; OUT is written only on success.",
+                    98));
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+        std::fprintf(stderr, "%s: %s\nRun '%s --help' for the options.\n", kTool, e.what(),
+                     kTool);
+        return 2;
+    }
+    return -1;
+}
+
+fairing::Operator operatorOf(const CommandLine& cl) { return operatorNames().at(cl.operatorName); }
+
+Values filterValues(const CommandLine& cl)
+{
+    Values v = filter_parameters::defaults(operatorOf(cl));
+    if (cl.timeStepGiven) v.timeStep = cl.timeStep;
+    v.steps = cl.steps;
+    v.order = cl.order - 1;
+    v.integration = cl.normalized ? 2 : cl.explicitIntegration ? 1 : 0;
+    v.preserveVolume = !cl.noVolume;
+    v.openInvariant = cl.area ? 1 : 0;
+    v.boundaryMode = cl.boundary == "curve" ? 1 : cl.boundary == "virtual" ? 2 : 0;
+    v.qualityWeights = cl.qualityWeights;
+    v.invertQuality = cl.invertWeights;
+    v.selected = false;
+    v.tolerance = cl.tolerance;
+    v.maxIterations = cl.maxIterations;
+    v.freezeOperator = cl.freeze;
+    v.acceptUnconverged = cl.acceptUnconverged;
+    return v;
+}
+
+fairing::Options engineOptions(const CommandLine& cl, const Values& v)
+{
+    fairing::Options options = filter_parameters::toOptions(operatorOf(cl), v);
+    options.threads = cl.threads;
+    options.preconditioner = cl.preconditioner == "jacobi" ? fairing::Preconditioner::Jacobi
+                             : cl.preconditioner == "factored"
+                                 ? fairing::Preconditioner::Factored
+                                 : fairing::Preconditioner::Automatic;
+    return options;
+}
+
+}  // namespace implicit_fairing

@@ -1,0 +1,79 @@
+#include "report.h"
+
+#include "common.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdarg>
+#include <cstdio>
+#include <vector>
+
+namespace implicit_fairing {
+namespace {
+
+std::string printfString(const char* format, ...) __attribute__((format(printf, 1, 2)));
+std::string printfString(const char* format, ...)
+{
+    va_list args, again;
+    va_start(args, format);
+    va_copy(again, args);
+    const int n = std::vsnprintf(nullptr, 0, format, args);
+    va_end(args);
+    std::vector<char> buf(static_cast<std::size_t>(n > 0 ? n : 0) + 1);
+    std::vsnprintf(buf.data(), buf.size(), format, again);
+    va_end(again);
+    return buf.data();
+}
+
+}  // namespace
+
+std::string jsonReport(const RunFacts& f)
+{
+    const fairing::Options& o = f.options;
+    const fairing::Result& r = f.result;
+    nlohmann::ordered_json j;  // keys in this order, as documented
+    j["vertices"] = f.vertices;
+    j["faces"] = f.faces;
+    j["operator"] = f.cl.operatorName;
+    j["order"] = o.order;
+    j["integration"] = o.integration == fairing::Integration::Implicit ? "implicit"
+                       : o.normalized                                 ? "explicit-normalized"
+                                                                      : "explicit";
+    j["boundary"] = f.cl.boundary;
+    j["steps"] = r.steps;
+    j["time_step"] = o.time_step;
+    j["lambda_dt"] = r.lambda_dt;
+    j["cg_iterations"] = r.total_iterations;
+    j["inner_iterations"] = r.total_inner_iterations;
+    j["residual"] = r.max_residual;
+    j["volume_before"] = r.volume_before;
+    j["volume_after"] = r.volume_after;
+    j["vertices_moved"] = r.vertices_moved;
+    j["vertices_fixed"] = r.vertices_fixed;
+    j["merged_vertices"] = f.loaded.merged;
+    j["components"] = r.components.size();
+    j["boundary_loops"] = r.boundary_loops;
+    j["seconds_engine"] = r.seconds;
+    j["seconds_total"] = f.secondsTotal;
+    j["warnings"] = r.warnings;
+    // indent -1: one line; invalid UTF-8 (none expected) replaced rather than thrown
+    return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
+std::string summaryLine(const RunFacts& f)
+{
+    const fairing::Result& r = f.result;
+    const std::string volume = r.volume_before != 0  // 0: no closed component
+                                   ? "volume " + formatNumber(r.volume_before) + " -> " +
+                                         formatNumber(r.volume_after) + "; "
+                                   : "";
+    return printfString(
+        "%s: %s: %ld vertices (%d moved), %ld faces; %s, order %d, %d step%s, lambda_dt %g; "
+        "%d CG iterations, residual %.3g; %s%.6g s (engine %.6g s)",
+        kTool, f.cl.out.c_str(), f.vertices, r.vertices_moved, f.faces,
+        f.cl.operatorName.c_str(), f.options.order, r.steps, r.steps == 1 ? "" : "s",
+        r.lambda_dt, r.total_iterations, r.max_residual, volume.c_str(), f.secondsTotal,
+        r.seconds);
+}
+
+}  // namespace implicit_fairing
