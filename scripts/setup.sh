@@ -18,6 +18,10 @@ packages+=(meshlab qtbase5-dev libqt5opengl5-dev libglew-dev dpkg-dev xz-utils p
            xvfb xauth xdotool imagemagick tesseract-ocr tesseract-ocr-eng)
 # The Debian package (scripts/package.sh, tests/package): man page from --help, lintian, man -w.
 packages+=(help2man lintian man-db)
+# scripts/batch.py (Dask distributed, progress bar) and its tests (label batch).
+packages+=(python3-distributed python3-tqdm)
+# scripts/recipes.sh and its test (label recipes): numpy for the figures, f3d for the pictures.
+packages+=(python3-numpy f3d fonts-dejavu-core)
 "$root/scripts/ensure-packages.sh" "${packages[@]}"
 
 # MeshLab 2020.09 headers (Debian source package, pinned) into the cache; prints its directory.
