@@ -231,6 +231,8 @@ def openmesh_task(m, c, cont):
 
 # ------------------------------------------------------------------ auto through the CLI
 def cli_has_auto(probe):
+    if not os.path.exists(CLI):
+        return False
     r = subprocess.run([CLI, probe, os.path.join(runs_dir, "probe.ply"), "--time-step", "auto", "--json", "-q"],
                        capture_output=True, text=True)
     return r.returncode == 0
