@@ -24,6 +24,9 @@ p.add_argument("--results", default="")
 p.add_argument("--jobs", type=int, default=2)
 p.add_argument("--no-cost", action="store_true", help="skip the >= 1 M-face cost row")
 p.add_argument("--peers-from", default="", help="passed to denoise_report.py (with --ours-only)")
+p.add_argument("--auto-from", default="",
+               help="only the automatic strength (order 2, 1/2/4 steps, each filter) on the meshes of an "
+                    "earlier run's full rows, plus one run at that run's oracle time step (engine check)")
 p.add_argument("--ours-only", action="store_true",
                help="only our filters (the peers' rows then come from an earlier run: denoise_report.py --peers-from)")
 a = p.parse_args()
@@ -307,6 +310,36 @@ def cost_rows(auto_cli, auto_tool):
     return rows
 
 
+def auto_from_tasks(meshes):
+    """--auto-from: the automatic strength against the oracles of an earlier run (same seeded
+    inputs); each task also reruns the oracle's time step with this engine, so an engine change
+    that moved the explicit results shows (the report keeps the better of the two)."""
+    best = {}
+    for line in open(a.auto_from):
+        r = json.loads(line)
+        if r.get("method") == "ours" and r.get("kind") == "fixed" and r.get("rms") is not None and r["order"] == 2:
+            k = (r["mesh"], r["noise"], r["op"], r["steps"])
+            if k not in best or r["rms"] < best[k]["rms"]:
+                best[k] = r
+    tasks = []
+    for m in meshes:
+        for c in m["cases"]:
+            for op in OPS:
+                for steps in (1, 2, 4):
+                    o = best.get((m["name"], c["noise"], op, steps))
+                    if o:
+                        tasks.append(("auto %s %s %s %d" % (m["name"], c["noise"], op, steps),
+                                      lambda m=m, c=c, op=op, steps=steps, ts=o["time_step"]: auto_task(m, c, op, steps, ts)))
+    return tasks
+
+
+def auto_task(m, c, op, steps, ts):
+    out = run([DT, "sweep", c["noisy"], m["clean"], m["truth"], op, "2", str(steps), "1", "--auto", "--ts", repr(ts)],
+              env=dict(os.environ, OMP_NUM_THREADS="1")).stdout
+    return [dict(base(m, c), method="ours", op=op, order=2, steps=steps, **r) for r in jlines(out)
+            if r.get("kind") != "input"]
+
+
 # ------------------------------------------------------------------ main
 def main():
     meshes = []
@@ -346,6 +379,8 @@ def main():
                             ts = [0.1, 1, 10] if order == 1 else [0.1, 1, 10, 100]
                         tasks.append(("invariant %s" % m["name"], lambda m=m, op=op, order=order, steps=steps, ts=ts:
                                       invariant_task(m, op, order, steps, ts)))
+    if a.auto_from:
+        tasks = auto_from_tasks(meshes) + [t for t in tasks if t[0].startswith(("invariant", "cli-auto"))]
     log("%d tasks on %d meshes, %d parallel jobs" % (len(tasks), len(meshes), a.jobs))
     rows, failures, spent = [], [], collections.Counter()
 
@@ -373,19 +408,21 @@ def main():
                 cores=os.cpu_count(), load_after=os.getloadavg(), minutes=(time.time() - started) / 60,
                 git=run(["git", "-C", root, "rev-parse", "--short", "HEAD"]).stdout.strip(),
                 command="bench/denoise.sh" + (" --quick" if a.quick else "") + (" --only " + a.only if only else "")
-                        + (" --ours-only" if a.ours_only else ""),
+                        + (" --ours-only" if a.ours_only else "") + (" --auto-from ..." if a.auto_from else ""),
                 auto_cli=auto_cli, auto_engine=auto_tool, task_minutes={k: round(v / 60, 2) for k, v in spent.items()}, meshes=[dict(name=m["name"], kind=dict(ALL_KIND)[m["name"]], truth=m["truth"], **m["info"])
                                            for m in meshes], noises=NOISES, failures=failures,
                 full_rows="$FAIRING_CACHE/denoise-runs/denoise-full%s%s.jsonl" % ("-quick" if a.quick else "",
                                                                                  "-ours" if a.ours_only else ""))
     # every row (results/denoise.jsonl is the report's extract); never the file --peers-from reads
-    path = os.path.join(runs_dir, "denoise-full%s%s.jsonl" % ("-quick" if a.quick else "", "-ours" if a.ours_only else ""))
+    path = os.path.join(runs_dir, "denoise-full%s%s.jsonl" % ("-quick" if a.quick else "",
+                                                           "-ours" if a.ours_only else "-auto" if a.auto_from else ""))
     with open(path, "w") as f:
         f.write(json.dumps(dict(meta=meta)) + "\n")
         for r in rows:
             f.write(json.dumps(r, ensure_ascii=False) + "\n")
     log("%d rows in %s; %d failures" % (len(rows), path, len(failures)))
-    subprocess.run([sys.executable, os.path.join(root, "bench", "denoise_report.py"), path, results]
+    subprocess.run([sys.executable, os.path.join(root, "bench", "denoise_report.py")]
+                   + ([a.auto_from] if a.auto_from else []) + [path, results]
                    + (["--peers-from", a.peers_from] if a.peers_from else []), check=True)
 
 

@@ -5,6 +5,7 @@
 #
 #   bench/denoise.sh [--quick] [--only NAMES] [--results DIR] [--jobs N] [--build DIR]
 #                    [--no-install] [--no-cost] [--ours-only --peers-from RUN.jsonl]
+#                    [--auto-from RUN.jsonl]
 #
 #   --quick        4 small meshes (sphere 3k, flat patch 3k, elephant 6k, fandisk 13k), no cost row
 #   --only NAMES   only these meshes, comma-separated (names: bench/denoise.py, ALL)
@@ -14,6 +15,8 @@
 #   --build DIR    build directory (default $FAIRING_CACHE/bench-build, as bench/run.sh)
 #   --no-install   do not apt-get install the peers (libcgal-dev libopenmesh-dev gnuplot-nox)
 #   --no-cost      skip the >= 1 M-face cost row (Loop x2 bunny)
+#   --auto-from F  only the automatic strength (and the invariants, the cost row) against the
+#                  oracles in F, the full rows of an earlier run (engine gained auto since)
 #   --ours-only    run only our filters (engine changed, peers did not) and take the peers' rows
 #   --peers-from F from F, the full rows of an earlier run on the same meshes
 #                  ($FAIRING_CACHE/denoise-runs/denoise-full[-quick].jsonl; seeded inputs, so equal)
@@ -29,7 +32,7 @@ while [ $# -gt 0 ]; do
   case "$1" in
     --no-install) install=0 ;;
     --quick|--no-cost|--ours-only) args+=("$1") ;;
-    --peers-from) [ $# -ge 2 ] || { echo "denoise.sh: $1 needs a value" >&2; exit 2; }
+    --peers-from|--auto-from) [ $# -ge 2 ] || { echo "denoise.sh: $1 needs a value" >&2; exit 2; }
       args+=("$1" "$(cd "$(dirname "$2")" && pwd)/$(basename "$2")"); shift ;;
     --only|--jobs) [ $# -ge 2 ] || { echo "denoise.sh: $1 needs a value" >&2; exit 2; }
       args+=("$1" "$2"); shift ;;
@@ -37,7 +40,7 @@ while [ $# -gt 0 ]; do
       mkdir -p "$2"; args+=(--results "$(cd "$2" && pwd)"); shift ;;
     --build) [ $# -ge 2 ] || { echo "denoise.sh: $1 needs a value" >&2; exit 2; }
       bb=$2; shift ;;
-    -h|--help) sed -n 2,23p "$0"; exit 0 ;;
+    -h|--help) sed -n 2,26p "$0"; exit 0 ;;
     *) echo "denoise.sh: unknown option $1" >&2; exit 2 ;;
   esac
   shift
