@@ -25,7 +25,7 @@ p.add_argument("--jobs", type=int, default=2)
 p.add_argument("--no-cost", action="store_true", help="skip the >= 1 M-face cost row")
 p.add_argument("--peers-from", default="", help="passed to denoise_report.py (with --ours-only)")
 p.add_argument("--auto-from", default="",
-               help="only the automatic strength (order 2, 1/2/4 steps, each filter) on the meshes of an "
+               help="only the automatic strength (every filter, order and steps) on the meshes of an "
                     "earlier run's full rows, plus one run at that run's oracle time step (engine check)")
 p.add_argument("--ours-only", action="store_true",
                help="only our filters (the peers' rows then come from an earlier run: denoise_report.py --peers-from)")
@@ -317,26 +317,28 @@ def auto_from_tasks(meshes):
     best = {}
     for line in open(a.auto_from):
         r = json.loads(line)
-        if r.get("method") == "ours" and r.get("kind") == "fixed" and r.get("rms") is not None and r["order"] == 2:
-            k = (r["mesh"], r["noise"], r["op"], r["steps"])
+        if r.get("method") == "ours" and r.get("kind") == "fixed" and r.get("rms") is not None:
+            k = (r["mesh"], r["noise"], r["op"], r["order"], r["steps"])
             if k not in best or r["rms"] < best[k]["rms"]:
                 best[k] = r
     tasks = []
     for m in meshes:
         for c in m["cases"]:
             for op in OPS:
-                for steps in (1, 2, 4):
-                    o = best.get((m["name"], c["noise"], op, steps))
-                    if o:
-                        tasks.append(("auto %s %s %s %d" % (m["name"], c["noise"], op, steps),
-                                      lambda m=m, c=c, op=op, steps=steps, ts=o["time_step"]: auto_task(m, c, op, steps, ts)))
+                for order in (1, 2):
+                    for steps in (1, 2, 3, 4):
+                        o = best.get((m["name"], c["noise"], op, order, steps))
+                        if o:
+                            tasks.append(("auto %s %s %s" % (m["name"], c["noise"], op),
+                                          lambda m=m, c=c, op=op, order=order, steps=steps, ts=o["time_step"]:
+                                          auto_task(m, c, op, order, steps, ts)))
     return tasks
 
 
-def auto_task(m, c, op, steps, ts):
-    out = run([DT, "sweep", c["noisy"], m["clean"], m["truth"], op, "2", str(steps), "1", "--auto", "--ts", repr(ts)],
-              env=dict(os.environ, OMP_NUM_THREADS="1")).stdout
-    return [dict(base(m, c), method="ours", op=op, order=2, steps=steps, **r) for r in jlines(out)
+def auto_task(m, c, op, order, steps, ts):
+    out = run([DT, "sweep", c["noisy"], m["clean"], m["truth"], op, str(order), str(steps), "1", "--auto", "--ts",
+               repr(ts)], env=dict(os.environ, OMP_NUM_THREADS="1")).stdout
+    return [dict(base(m, c), method="ours", op=op, order=order, steps=steps, **r) for r in jlines(out)
             if r.get("kind") != "input"]
 
 
