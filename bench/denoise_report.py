@@ -424,6 +424,20 @@ w("\n`!`: the best is the last setting tried (the peer's sweep might need to go 
 
 if auto or cli_auto:
     w("## Automatic strength against the oracle\n")
+    w("Summary per setting over every case (the flat patch included): auto error / oracle error of the same "
+      "filter, order and steps, and auto's time step / the oracle's (> 1: auto smooths more).\n")
+    w("| filter | order | steps | cases | ≤ 1.10 | median | worst | median ts ratio | ts ratio range |")
+    w("|---|---|---|---|---|---|---|---|---|")
+    for (o, order, steps) in configs:
+        ks = [k for k in auto if k[2:] == (o, order, steps) and k in oracle]
+        if not ks:
+            continue
+        q = sorted(auto[k]["rms"] / oracle[k]["rms"] for k in ks)
+        t = sorted(auto[k]["time_step"] / oracle[k]["time_step"] for k in ks if oracle[k]["time_step"])
+        w("| %s | %d | %d | %d | %d | %.3f | %.3f | %s | %s |" % (
+            OPNAME[o], order, steps, len(q), sum(x <= 1.10 for x in q), q[len(q) // 2], q[-1],
+            g(t[len(t) // 2]) if t else "—", ("%s – %s" % (g(t[0], 2), g(t[-1], 2))) if t else "—"))
+    w("")
     w("| mesh | noise | filter | order | steps | oracle | oracle ts | auto | auto ts | auto / oracle | noise estimate (edges) |")
     w("|---|---|---|---|---|---|---|---|---|---|---|")
     for k in sorted(auto, key=lambda k: (mesh_order[k[0]], order_noise.get(k[1], 9), OPS.index(k[2]), k[3], k[4])):
@@ -478,8 +492,10 @@ if os.path.abspath(extract) not in [os.path.abspath(x) for x in srcs + [peers_fr
                 r = dict(r, op=None, order=None, steps=None)
             elif not (id(r) in keep or r.get("method") in ("invariant", "cost")):
                 continue
-            fo.write(json.dumps({k: (float("%.6g" % v) if isinstance(v, float) else v) for k, v in r.items()
-                                 if k not in DROP and v is not None}, ensure_ascii=False) + "\n")
+            drop = DROP + (("max", "seconds", "cg", "strength_seconds", "noise_level_edges", "filter", "params")
+                           if r.get("kind") != "auto" and r.get("method") not in ("cost", "invariant") else ())
+            fo.write(json.dumps({k: (float("%.5g" % v) if isinstance(v, float) else v) for k, v in r.items()
+                                 if k not in drop and v is not None}, ensure_ascii=False, separators=(",", ":")) + "\n")
 
 print("denoise_report: %s, %s, %d plots" % (os.path.join(out_dir, "denoise.md"), os.path.join(out_dir, "denoise_oracle.md"), len(pngs)),
       file=sys.stderr)
