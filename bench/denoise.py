@@ -26,7 +26,8 @@ p.add_argument("--no-cost", action="store_true", help="skip the >= 1 M-face cost
 p.add_argument("--peers-from", default="", help="passed to denoise_report.py (with --ours-only)")
 p.add_argument("--auto-from", default="",
                help="only the automatic strength (every filter, order and steps) on the meshes of an "
-                    "earlier run's full rows, plus one run at that run's oracle time step (engine check)")
+                    "earlier run's full rows, plus one run at that run's oracle time step (engine check); "
+                    "'none': no earlier run (one run at the chosen time step instead)")
 p.add_argument("--ours-only", action="store_true",
                help="only our filters (the peers' rows then come from an earlier run: denoise_report.py --peers-from)")
 a = p.parse_args()
@@ -315,7 +316,7 @@ def auto_from_tasks(meshes):
     inputs); each task also reruns the oracle's time step with this engine, so an engine change
     that moved the explicit results shows (the report keeps the better of the two)."""
     best = {}
-    for line in open(a.auto_from):
+    for line in (open(a.auto_from) if a.auto_from != "none" else []):
         r = json.loads(line)
         if r.get("method") == "ours" and r.get("kind") == "fixed" and r.get("rms") is not None:
             k = (r["mesh"], r["noise"], r["op"], r["order"], r["steps"])
@@ -326,18 +327,19 @@ def auto_from_tasks(meshes):
         for c in m["cases"]:
             for op in OPS:
                 for order in (1, 2):
-                    for steps in (1, 2, 3, 4):
+                    for steps in steps_for(m):
                         o = best.get((m["name"], c["noise"], op, order, steps))
-                        if o:
-                            tasks.append(("auto %s %s %s" % (m["name"], c["noise"], op),
-                                          lambda m=m, c=c, op=op, order=order, steps=steps, ts=o["time_step"]:
-                                          auto_task(m, c, op, order, steps, ts)))
+                        tasks.append(("auto %s %s %s" % (m["name"], c["noise"], op),
+                                      lambda m=m, c=c, op=op, order=order, steps=steps, ts=o["time_step"] if o else None:
+                                      auto_task(m, c, op, order, steps, ts)))
     return tasks
 
 
 def auto_task(m, c, op, order, steps, ts):
-    out = run([DT, "sweep", c["noisy"], m["clean"], m["truth"], op, str(order), str(steps), "1", "--auto", "--ts",
-               repr(ts)], env=dict(os.environ, OMP_NUM_THREADS="1")).stdout
+    # without an oracle time step (--auto-from none): auto, then a run at the step it chose
+    extra = ["--auto", "--ts", repr(ts)] if ts is not None else ["--at-chosen"]
+    out = run([DT, "sweep", c["noisy"], m["clean"], m["truth"], op, str(order), str(steps), "1"] + extra,
+              env=dict(os.environ, OMP_NUM_THREADS="1")).stdout
     return [dict(base(m, c), method="ours", op=op, order=order, steps=steps, **r) for r in jlines(out)
             if r.get("kind") != "input"]
 
@@ -424,7 +426,7 @@ def main():
             f.write(json.dumps(r, ensure_ascii=False) + "\n")
     log("%d rows in %s; %d failures" % (len(rows), path, len(failures)))
     subprocess.run([sys.executable, os.path.join(root, "bench", "denoise_report.py")]
-                   + ([a.auto_from] if a.auto_from else []) + [path, results]
+                   + ([a.auto_from] if a.auto_from and a.auto_from != "none" else []) + [path, results]
                    + (["--peers-from", a.peers_from] if a.peers_from else []), check=True)
 
 

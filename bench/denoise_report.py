@@ -65,6 +65,7 @@ def valid(r):
 # ------------------------------------------------------------------ ours: oracle and auto per config
 ours = collections.defaultdict(list)      # (mesh, noise, op, order, steps) -> fixed rows
 auto = {}                                 # same key -> auto row (in-process)
+auto_fail = {}                            # same key -> auto row whose fair() threw
 inp = {}
 for r in R:
     if r.get("method") != "ours":
@@ -77,6 +78,8 @@ for r in R:
         ours[k].append(r)
     elif r["kind"] == "auto" and valid(r):
         auto[k] = r
+    elif r["kind"] == "auto" and r.get("error"):
+        auto_fail[k] = r
     elif r["kind"] == "input":
         inp[(r["mesh"], r["noise"])] = r["rms"]
 oracle = {k: min(v, key=lambda r: r["rms"]) for k, v in ours.items()}
@@ -224,6 +227,10 @@ if auto:
             T.append(("auto ≤ 1.10 × oracle, every mesh × noise × order × steps", op,
                       "worst %.3f (%s, %s, L%s, %d steps)" % (q, k[0], k[1], "²" if k[3] == 2 else "", k[4]), "≤ 1.10", st(q <= 1.10)))
     T.append(("auto ≤ 1.10 × oracle", "all rows", "%d of %d rows" % (n_ok, n_all), "all", st(n_ok == n_all)))
+    if auto_fail:
+        k, r = sorted(auto_fail.items())[0]
+        T.append(("auto runs that failed (fair() threw)", "%d rows, e.g. %s %s %s L%s %d steps" % (
+            len(auto_fail), k[0], k[1], k[2], "²" if k[3] == 2 else "", k[4]), r["error"][:200], "none", "**missed**"))
 else:
     T.append(("auto ≤ 1.10 × oracle, every row", "all", "the engine of this tree has no automatic strength "
               "(Options::time_step is not optional) and the CLI refuses --time-step auto", "≤ 1.10", "n/a"))

@@ -99,13 +99,22 @@ Run fair_once(const fairing::TriangleMesh& tm, const Mesh& input, const Truth& t
     return run;
 }
 
+std::string json_text(const std::string& s) {
+    std::string o;
+    for (char c : s) {
+        if (c == '"' || c == '\\') o += '\\';
+        o += (c == '\n' || c == '\t') ? ' ' : c;
+    }
+    return o;
+}
+
 void print_run(const char* kind, double ts, const Run& r) {
     std::printf("{\"kind\":\"%s\",\"time_step\":%s,\"rms\":%s,\"max\":%s,\"volume_change\":%s,"
                 "\"seconds\":%s,\"cg\":%d,\"noise_level_edges\":%s,\"strength_seconds\":%s%s%s%s}\n",
                 kind, num(ts).c_str(), num(r.s.rms).c_str(), num(r.s.max).c_str(),
                 num(r.s.volume_change).c_str(), num(r.seconds).c_str(), r.cg, num(r.noise).c_str(),
                 num(r.choosing).c_str(),
-                r.error.empty() ? "" : ",\"error\":\"", r.error.empty() ? "" : "failed",
+                r.error.empty() ? "" : ",\"error\":\"", json_text(r.error).c_str(),
                 r.error.empty() ? "" : "\"");
     std::fflush(stdout);
 }
