@@ -231,7 +231,8 @@ inline std::vector<std::pair<double, double>> log_search(const std::function<dou
             x = dir > 0 ? x * 2 : x / 2;
             if (x > hi || x < lo) break;
             const double v = eval(x);
-            rises = v > prev ? rises + 1 : (v < eval(best_x()) ? 0 : rises);
+            // a failed run (1e300) counts as a rise: two in a row end the walk
+            rises = (v > prev || v >= 1e300) ? rises + 1 : (v < eval(best_x()) ? 0 : rises);
             prev = v;
         }
     }
