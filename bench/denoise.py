@@ -40,7 +40,8 @@ TIMER = os.path.join(B, "meshlab_filter_timer")
 UNSHARP = "/usr/lib/x86_64-linux-gnu/meshlab/plugins/libfilter_unsharp.so"
 meshes_dir = os.path.join(cache, "bench-meshes")
 runs_dir = os.path.join(cache, "denoise-runs")
-results = os.path.abspath(a.results) if a.results else os.path.join(root, "bench", "results")
+results = (os.path.abspath(a.results) if a.results else
+           os.path.join(root, "bench", "results", "denoise-quick") if a.quick else os.path.join(root, "bench", "results"))
 for d in (meshes_dir, runs_dir, results):
     os.makedirs(d, exist_ok=True)
 started = time.time()

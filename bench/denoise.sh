@@ -10,7 +10,7 @@
 #   --quick        4 small meshes (sphere 3k, flat patch 3k, elephant 6k, fandisk 13k), no cost row
 #   --only NAMES   only these meshes, comma-separated (names: bench/denoise.py, ALL)
 #   --results DIR  write denoise.md, denoise_oracle.md, denoise.jsonl and the PNGs into DIR
-#                  instead of bench/results
+#                  instead of bench/results (bench/results/denoise-quick with --quick)
 #   --jobs N       parallel runs (default 2; the runs themselves are single-threaded)
 #   --build DIR    build directory (default $FAIRING_CACHE/bench-build, as bench/run.sh)
 #   --no-install   do not apt-get install the peers (libcgal-dev libopenmesh-dev gnuplot-nox)
