@@ -2,7 +2,7 @@
 // without its start-up, X server, mesh loading and saving in the measurement.
 //
 //   meshlab_filter_timer PLUGIN.so "FILTER NAME" IN.ply OUT.ply [name=value ...] [--repeat N]
-//                        [--io IO_PLUGIN.so]
+//                        [--io IO_PLUGIN.so] [--checkpoints K1,K2,...]
 //
 // - IN is imported with Debian's own io_base plugin (libio_base.so next to PLUGIN.so's
 //   siblings in /usr/lib/x86_64-linux-gnu/meshlab/plugins, or --io) and prepared exactly as
@@ -21,6 +21,12 @@
 // - The filter's log (GLLogStream) goes to stderr; when it carries "Time: X s in the engine"
 //   (the implicit fairing plugin) the JSON also has engine_seconds (median) and overhead =
 //   (seconds - engine_seconds) / engine_seconds.
+//
+// - --checkpoints K1,K2,... (increasing; for the denoising study, bench/denoise.sh): applies the
+//   filter Kn times in a row to the same mesh, as a user clicking Apply again would, and writes
+//   the mesh after the Ki-th application to OUT with "_cKi" before its extension (OUT itself is
+//   not written); "seconds" is then the total applyFilter time of all applications and the JSON
+//   has "checkpoints": [[Ki, seconds so far], ...]. --repeat is ignored.
 //
 // stdout: one JSON line {"filter", "vertices", "faces", "seconds", "all", ["engine_seconds",
 // "engine_all", "overhead", "cg_iterations"]}. Exit status 1 when the filter fails.
@@ -165,15 +171,21 @@ int main(int argc, char** argv)
     std::vector<QString> assignments;
     QString ioPath = kDefaultIo;
     int repeat = 1;
+    std::vector<int> checkpoints;
     std::vector<QString> pos;
     for (int i = 1; i < argc; ++i) {
         const QString a = QString::fromLocal8Bit(argv[i]);
         if (a == "--repeat" && i + 1 < argc) repeat = std::max(1, std::atoi(argv[++i]));
         else if (a == "--io" && i + 1 < argc) ioPath = QString::fromLocal8Bit(argv[++i]);
+        else if (a == "--checkpoints" && i + 1 < argc) {
+            for (const QString& k : QString::fromLocal8Bit(argv[++i]).split(','))
+                if (k.toInt() > (checkpoints.empty() ? 0 : checkpoints.back())) checkpoints.push_back(k.toInt());
+        }
         else if (pos.size() < 4) pos.push_back(a);
         else assignments.push_back(a);
     }
     if (pos.size() < 4) return usage();
+    if (!checkpoints.empty()) repeat = 1;
     const QString pluginPath = pos[0], filterName = pos[1];
     const QString in = QFileInfo(pos[2]).absoluteFilePath(), out = QFileInfo(pos[3]).absoluteFilePath();
 
@@ -192,6 +204,7 @@ int main(int argc, char** argv)
     }
 
     std::vector<double> seconds, engine;
+    std::vector<std::pair<int, double>> reached;  // --checkpoints: (applications, seconds so far)
     long long cgIterations = -1;
     int vn = 0, fn = 0;
     const QRegularExpression engineRe("Time: ([0-9.eE+-]+) s in the engine");
@@ -234,12 +247,25 @@ int main(int argc, char** argv)
         mm->cm.svn = int(vcg::tri::UpdateSelection<CMeshO>::VertexCount(mm->cm));
         mm->cm.sfn = int(vcg::tri::UpdateSelection<CMeshO>::FaceCount(mm->cm));
 
-        md.setBusy(true);
-        const auto t0 = std::chrono::steady_clock::now();
-        const bool ok = filter->applyFilter(action, md, par, callback);
-        const auto t1 = std::chrono::steady_clock::now();
-        md.setBusy(false);
-        seconds.push_back(std::chrono::duration<double>(t1 - t0).count());
+        const int applications = checkpoints.empty() ? 1 : checkpoints.back();
+        double total = 0;
+        bool ok = true;
+        for (int k = 1; k <= applications && ok; ++k) {
+            md.setBusy(true);
+            const auto t0 = std::chrono::steady_clock::now();
+            ok = filter->applyFilter(action, md, par, callback);
+            const auto t1 = std::chrono::steady_clock::now();
+            md.setBusy(false);
+            total += std::chrono::duration<double>(t1 - t0).count();
+            if (ok && std::find(checkpoints.begin(), checkpoints.end(), k) != checkpoints.end()) {
+                const QFileInfo fo(out);
+                const QString name = fo.path() + "/" + fo.completeBaseName() + "_c" + QString::number(k) +
+                                     "." + fo.suffix();
+                if (!exportMesh(*io, *md.mm(), name)) return 1;
+                reached.emplace_back(k, total);
+            }
+        }
+        seconds.push_back(total);
 
         QStringList lines;
         log.print(lines);
@@ -255,7 +281,7 @@ int main(int argc, char** argv)
                          qUtf8Printable(filter->errorMsg()));
             return 1;
         }
-        if (run + 1 == repeat && !exportMesh(*io, *md.mm(), out)) return 1;
+        if (checkpoints.empty() && run + 1 == repeat && !exportMesh(*io, *md.mm(), out)) return 1;
     }
 
     const double s = median(seconds);
@@ -279,6 +305,14 @@ int main(int argc, char** argv)
         }
     }
     if (cgIterations >= 0) j += ",\"cg_iterations\":" + std::to_string(cgIterations);
+    if (!checkpoints.empty()) {
+        j += ",\"checkpoints\":[";
+        for (size_t i = 0; i < reached.size(); ++i) {
+            std::snprintf(buf, sizeof buf, "%s[%d,%.6g]", i ? "," : "", reached[i].first, reached[i].second);
+            j += buf;
+        }
+        j += "]";
+    }
     j += "}";
     std::printf("%s\n", j.c_str());
     return 0;
