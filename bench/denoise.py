@@ -1,4 +1,6 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 """Denoising study of issue 11 (bench/denoise.sh; bench/README.md, "Denoising study").
 
 For every mesh and noise case, in one run: each of our filters (umbrella, scale-dependent,

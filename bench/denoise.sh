@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # Denoising study (issue 11): for each mesh and noise case, the error of our filters at the best
 # time step of a sweep ("oracle"), of the automatic strength (when the engine / CLI have it) and
 # of each peer at its own best setting, in one run. See bench/README.md, "Denoising study".

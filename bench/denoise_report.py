@@ -1,4 +1,6 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 """denoise.jsonl (bench/denoise.py) -> denoise.md (Targets, per-case summary, peers, defaults),
 denoise_oracle.md (every filter x order x steps), denoise_<filter>.png (gnuplot), and
 RESULTS_DIR/denoise.jsonl: the extract of DENOISE.jsonl these tables and plots use (the meta line,

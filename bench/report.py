@@ -1,4 +1,6 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 """runs.jsonl (bench/run_bench.py) -> results.md, plus a gnuplot PNG when available.
 
     report.py RUNS.jsonl RESULTS.md

@@ -1,4 +1,6 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 """Google Benchmark JSON -> bench/results/micro.md (tables and the derived target ratios).
 
 Target b (issue 5): one CG iteration <= 1.2x one 3-column sparse product of the same binary, and

@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # End-to-end benchmark of the implicit fairing engine, its CLI and its MeshLab 2020.09 plugin
 # against CGAL smooth_shape, OpenMesh's JacobiLaplaceSmootherT and MeshLab's own Laplacian,
 # ScaleDependent Laplacian and Taubin smoothing, at equal diffusion time (bench/README.md).

@@ -1,4 +1,6 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 """End-to-end runs for bench/run.sh: meshes, our CLI and plugin, the peers, metrics, tables.
 
 Equal diffusion time (bench/README.md derives each mapping): T = t h^2, h = mean edge length,

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # The Debian 12 package `implicit-fairing` (CPack DEB), included from the top CMakeLists.txt.
 # It holds what `cmake --install` installs for the components
 #   meshlab2020  the 2020.09 plugin -> /usr/lib/x86_64-linux-gnu/meshlab/plugins/

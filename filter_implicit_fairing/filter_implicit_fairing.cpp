@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Filter logic of the implicit fairing plugin. No numerics here (the engine in fairing/ does
 // them) and no MeshLab API differences (meshlab_api.h maps them): this file builds the parameter
 // list, translates parameters into fairing::Options, runs the adapters and the engine, and logs.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // MeshLab filter plugin: implicit fairing of irregular meshes (Desbrun, Meyer, Schroeder, Barr,
 // SIGGRAPH 1999). Three filters, one per operator of the paper, in
 // Filters > Smoothing, Fairing and Deformation. The filter logic here is API-neutral; the

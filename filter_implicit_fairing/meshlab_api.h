@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // The only place where the MeshLab plugin APIs differ.
 //
 // The filter logic (filter_implicit_fairing.{h,cpp}) derives from fairing_plugin::FilterBase and

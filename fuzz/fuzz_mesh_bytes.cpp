@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // libFuzzer target (issue 6): mesh bytes -> vcg mesh (as MeshLab holds it: float coordinates,
 // deleted/selected flags, per-vertex quality) -> vcg_adapters -> fairing::fair (a short run)
 // -> writePositions. It must never crash, hang, or write a non-finite coordinate; a

@@ -1,4 +1,6 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 """Writes the seed corpus of fuzz_mesh_bytes (format: fuzz_mesh_bytes.cpp) into DIR:
 an octahedron, a 4x4 grid, a tetrahedron in raw floats with a NaN and an Inf, a bow-tie, a
 duplicated face, a selection of one vertex. Tiny files, generated rather than committed."""

@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # Build the libFuzzer targets with clang, -fsanitize=fuzzer,address,undefined (the engine too,
 # for coverage and checks), in their own build directory, and fuzz for a bounded time.
 #   fuzz/run.sh [SECONDS]          default 60 (CI)

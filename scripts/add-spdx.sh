@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # Adds the SPDX licence lines (GPL-3.0-or-later, see LICENSE) to every tracked source file that
 # has none, after a shebang if there is one; idempotent. tests/license checks the result.
 set -euo pipefail

@@ -1,4 +1,6 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 """Smooths every mesh of a folder with implicit-fairing, on Dask distributed.
 
   scripts/batch.py IN_DIR OUT_DIR [options] [-- implicit-fairing options]

@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # Fetch Debian 13 (trixie)'s binary package meshlab_2022.02+dfsg1-1_amd64.deb (sha256 pinned;
 # 7.7 MB) into the cache, for tests/meshlab2022's check that the 2022.02 plugin fits the MeshLab
 # Debian 13 users install (its libmeshlab-common.so exports every symbol the plugin imports).

@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # The main job: smooths a noisy mesh with each of the three filters through Debian's real
 # meshlabserver (MeshLab 2020.09) with the freshly built plugin, prints a table and writes
 # before/after pictures. Set-up (packages, MeshLab sources, build) runs first, idempotently.

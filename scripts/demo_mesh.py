@@ -1,4 +1,6 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 """The main job's default mesh and its figures (standard library only).
 
   demo_mesh.py gen OUTDIR

@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # Installs the Debian packages named on the command line that are not installed yet (one
 # apt-get update, and only when something is missing). Idempotent; silent when all are there.
 #   scripts/ensure-packages.sh PACKAGE...

@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # Fetch the MeshLab 2020.09 sources that match Debian 12's `meshlab` binary package
 # (meshlab=2020.09+dfsg1-2, pinned) into a cache outside the repository. Only headers are used:
 # the plugin is compiled against <dir>/src and <dir>/vcglib and links Debian's own

@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # Fetch and build the MeshLab 2022.02 plugin SDK: the MeshLab that Debian 13 (trixie) and
 # Ubuntu 24.04 ship as `meshlab` (FilterPlugin API, float). Debian's source package
 # meshlab=2022.02+dfsg1-1 from trixie (orig tarball sha256 pinned in meshlab-2025-sdk.sh),

@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # Fetch and build the MeshLab 2025.07 plugin SDK (meshlab-common and io_base in float AND double
 # precision) and the MeshLab 2025.07 GUI application (`meshlab`, float, with io_base only) into a
 # versioned cache outside the repository. scripts/meshlab-2022-sdk.sh runs this script for

@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # Open Debian 12's real MeshLab 2020.09 GUI with the freshly built implicit fairing plugin, without
 # installing anything (same private prefix as scripts/meshlabserver.sh):
 #   scripts/meshlab.sh [mesh.ply ...]

@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # Open the real MeshLab 2025.07 GUI (built from Debian's source tarball into the cache by
 # scripts/meshlab-2025-sdk.sh) with the freshly built float plugin, installing nothing:
 #   scripts/meshlab2025.sh [mesh.ply ...]

@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # Run Debian 12's real meshlabserver (MeshLab 2020.09) headless with the freshly built implicit
 # fairing plugin, without installing anything:
 #   scripts/meshlabserver.sh -i in.ply -o out.ply -s script.mlx     (any meshlabserver arguments)

@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # Builds the Debian 12 package implicit-fairing_<version>-<rev>_amd64.deb (CPack, see
 # cmake/packaging.cmake) from the normal build dir and prints its path on stdout.
 #   scripts/package.sh [--lintian]     --lintian: also run Debian's lintian on it (report only)

@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # Feature-preserving recipes (docs/feature-preserving.md): smooths a noisy CAD-like part through
 # Debian's real meshlabserver (MeshLab 2020.09) with per-vertex weights or a selection made by
 # MeshLab's own stock filters, then our Curvature Flow filter; measures each result against

@@ -1,4 +1,6 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 """The feature-preserving recipes' CAD part and its figures (Debian's python3 with numpy).
 
   recipes_mesh.py gen OUTDIR [--noise S]

@@ -1,4 +1,6 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 """Writes the feature-preserving recipes' .mlx scripts (MeshLab 2020.09's stock filters, then
 ours). Every parameter is listed, as Debian's meshlabserver requires; our filter's block comes
 from tests/meshlab2020/mltest.py, the project's one writer of it.

@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # The unit suite (tests/engine, label engine, and tests/robustness, label robustness) under
 # AddressSanitizer and UndefinedBehaviorSanitizer, any finding fatal. Engine and unit tests only
 # (no MeshLab), in a build directory of its own:

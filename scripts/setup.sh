@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # Idempotent set-up on a fresh Debian 12 machine: apt packages, MeshLab SDKs (into a cache
 # outside the repository), then configure and build everything into build/.
 # Environment: FAIRING_CACHE (default ~/.cache/filter_implicit_fairing), BUILD_DIR (default build).

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Benchmark-only mesh utilities (no engine code): PLY/OFF I/O, generators (jittered torus),
 // Loop subdivision, normals, mean edge length, volume, and a uniform-grid closest-point query on
 // a triangle soup (for the vertex-to-surface error). Header-only, C++17.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Denoising study (issue 11): shapes with a known surface, noise models, the error measure, and a
 // one-dimensional search on a log scale. Benchmark-only, header-only, C++17, no engine code.
 //

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Google Benchmark micro-benchmarks of the engine's hot paths on generated jittered tori of
 // about 10k, 100k and 1M faces (bench/common/bench_mesh.h). Whatever engine is built is measured:
 // nothing here configures threads; set OMP_NUM_THREADS or the engine's own switch from outside.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Denoising study peer (bench/denoise.sh): CGAL 5.5 Polygon_mesh_processing::smooth_shape at its
 // best time, found by bench::log_search over the diffusion time c h^2 (time = c h^2 / 4, see
 // cgal_smooth_shape.cpp for the mapping), with a given number of iterations.

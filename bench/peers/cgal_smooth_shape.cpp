@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Peer driver: CGAL::Polygon_mesh_processing::smooth_shape (CGAL 5.5, Debian 12's libcgal-dev).
 //   cgal_smooth_shape IN OUT.ply TIME [ITERATIONS]
 // One implicit step solves (M - TIME * K) X' = M X with K_ij = cot a + cot b and the lumped mass

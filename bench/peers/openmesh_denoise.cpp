@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Denoising study peer (bench/denoise.sh): OpenMesh 9 JacobiLaplaceSmootherT (C0 uniform or C1
 // second-order umbrella, Tangential_and_Normal), evaluated after each iteration count of a
 // growing list until the error has risen 30 % above its best (or MAX iterations).

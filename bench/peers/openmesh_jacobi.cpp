@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Peer driver: OpenMesh::Smoother::JacobiLaplaceSmootherT (Debian 12's libopenmesh-dev),
 // Tangential_and_Normal, C0 (uniform weights: LaplaceSmootherT::initialize).
 //   openmesh_jacobi IN OUT.ply ITERATIONS

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // fairing-bench-tool: mesh preparation and measurement for bench/run.sh.
 //   torus FACES OUT.ply                      jittered torus with about FACES faces
 //   loop IN OUT.ply [LEVELS]                 Loop subdivision

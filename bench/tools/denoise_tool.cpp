@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // fairing-denoise-tool: meshes, noise, errors and our filters' time-step sweep for the
 // denoising study (bench/denoise.sh, issue 11). Error convention: common/denoise_shapes.h.
 //

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // meshlab_filter_timer: times ONE MeshLab 2020.09 filter in-process, as meshlabserver runs it but
 // without its start-up, X server, mesh loading and saving in the measurement.
 //

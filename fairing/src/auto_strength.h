@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Automatic strength: the time step that minimizes Stein's unbiased risk estimate (SURE) of the
 // error along the normals, estimated from the noisy mesh alone (not installed).
 //

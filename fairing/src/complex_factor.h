@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // The L^2 step as one complex solve (not installed).
 //
 // Without soft weights (D = M on the free rows) the free block of the L^2 system factors over

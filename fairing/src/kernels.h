@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Row-parallel loops of the engine (not installed). OpenMP is optional: without it, or below
 // kParallelRows rows, every loop runs on the calling thread.
 #pragma once

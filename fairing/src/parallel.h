@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Deterministic building blocks for the mesh passes that run inside one OpenMP parallel region
 // (not installed): HalfEdgeMesh::build and the operator assembly.
 //

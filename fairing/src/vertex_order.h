@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // A cache-friendly numbering of the vertices (not installed).
 //
 // The solver's products gather the neighbours' rows of 3-column vectors; when the input lists

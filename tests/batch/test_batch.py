@@ -1,4 +1,6 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 """Tests of scripts/batch.py (label batch): Debian's python3 with python3-distributed.
 
   test_batch.py CASE --batch scripts/batch.py --tool BIN --mltest tests/meshlab2020/mltest.py

@@ -1,4 +1,6 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 """Tests of the command-line tool implicit-fairing (label cli). Standard library only.
 
   test_cli.py CASE --tool BIN --mltest tests/meshlab2020/mltest.py --work DIR

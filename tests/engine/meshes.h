@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Test meshes and independent geometry helpers for the engine tests.
 //
 // Everything here is written from the definitions (the paper, the public headers), never from

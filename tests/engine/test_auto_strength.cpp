@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Automatic strength (fairing.h, src/auto_strength.h): Options::time_step left empty chooses the
 // time step minimizing Stein's unbiased risk estimate of the error along the normals, from the
 // noisy mesh alone. What users rely on: the same relative result in any unit, more smoothing

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Input validation and refusals (fairing.h, half_edge.h): what is handled (isolated vertices,
 // zero-area faces, faces repeating an index, inconsistent orientation) and what is refused with
 // a fairing::Error whose message names the problem.

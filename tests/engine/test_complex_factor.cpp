@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // The L^2 step as one complex solve (fairing/src/complex_factor.h): A^-1 g = Re (M + i s K)^-1 g
 // without soft weights. Checked against a dense solve of the real L^2 system, for every
 // operator, with fixed rows, in both residual norms; bit-identical on 1 and 2 threads; the

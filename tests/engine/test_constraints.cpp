@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Section 2.7: hard constraints (fixed vertices, bit-identical) and soft constraints (weights in
 // [0, 1] scaling lambda at each vertex; D = M / w in the symmetric system).
 #include "meshes.h"

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Section 5: curvature flow (eq. 14) versus diffusion (eq. 7, eq. 11) on the two configurations
 // the paper uses to tell them apart: a sphere with two sampling densities (Fig. 10) and a flat,
 // irregularly triangulated area (section 5.1: "no vertex sliding when an area is flat").

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Half-edge view (half_edge.h): connectivity invariants, boundary loops, components,
 // orientation consistency and the validation report.
 #include "meshes.h"

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Sections 2.2-2.3, 2.6, 4.3, 5.5: what one step computes (implicit eq. 9 and its order-2 form,
 // explicit eq. 8), their agreement to first order, unconditional stability of the implicit
 // scheme, frozen vs recomputed coefficients, and the explicit stability warning.

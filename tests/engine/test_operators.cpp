@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // The paper's three Laplacians in symmetric form L = M^-1 K (operators.h): structure of K and M,
 // definiteness of the implicit systems, and eq. 7 / eq. 11 / eq. 14 recomputed by hand.
 #include "meshes.h"

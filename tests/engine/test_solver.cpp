@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Jacobi-preconditioned CG (solver.h), checked against dense linear algebra built independently
 // from the assembled operator:
 //   order 1: A = D - lambda_dt K,   order 2: A = D + lambda_dt K P M^-1 K,   b = D x_old,

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // The row-parallel solver (Options::threads) computes the same step as one thread: only the
 // order of the floating-point sums in the dot products differs. Meshes of 50,000 vertices or
 // more take the parallel path; smaller ones always run on one thread.

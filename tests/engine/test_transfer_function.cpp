@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Section 2.5.1: the transfer function of implicit (and explicit) umbrella diffusion, checked
 // exactly on a regular closed torus grid, where the umbrella operator depends only on the
 // connectivity and diagonalizes in the discrete Fourier basis.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // The dimensionless time step (fairing.h): lambda_dt = time_step for the umbrella,
 // time_step * (mean edge length)^2 for eq. 11 and eq. 14 (order 1), so a mesh in millimetres and
 // the same mesh in metres are smoothed alike. And translation invariance far from the origin.

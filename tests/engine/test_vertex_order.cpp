@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // vertex_order.h: large meshes in a scattered vertex order are solved on a Z-order numbering
 // and mapped back. The user sees the same result as with a well-ordered input (to the solver's
 // tolerance), fixed vertices bit-identical, the volume kept; only the memory traffic changes.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Sections 3.1-3.2: exact volume preservation, per closed component, by scaling about the
 // component's (solid) centroid; open components: area or nothing.
 //

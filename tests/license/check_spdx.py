@@ -1,5 +1,7 @@
 #!/usr/bin/env python3
-"""Every tracked source file names its licence: an SPDX-License-Identifier line near its top
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
+"""Every tracked source file names its licence: the SPDX licence identifier line near its top
 that matches LICENSE (GPL-3.0-or-later). Exit 77 (skipped) outside a git checkout."""
 import os
 import subprocess

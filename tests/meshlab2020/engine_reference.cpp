@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Reference for the MeshLab 2020.09 and 2025.07 integration tests: runs the engine directly on a
 // PLY file, through the same vcg adapters but without MeshLab, Qt or the plugin's parameter
 // handling.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Writes a filter script the way MeshLab 2020.09's GUI does: the plugin is loaded by
 // QPluginLoader like PluginManager does, the parameter list comes from the plugin's
 // initParameterSet (what the filter dialog shows), edited values are set on it as the dialog

@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # GUI smoke test of the plugin in Debian 12's real MeshLab 2020.09 under Xvfb:
 # the plugin loads, Filters > Smoothing, Fairing and Deformation lists the three filters, the
 # Curvature Flow dialog opens with its parameters, and Apply runs the filter (its log lines

@@ -1,4 +1,6 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 """Helpers of the MeshLab 2020.09 integration tests (standard library only, no numpy).
 
   mltest.py gen KIND OUT.ply [--seed N] [--quality none|halfx|ramp]

@@ -1,4 +1,6 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 """Find text on a screenshot (GUI smoke test): tesseract on a 3x grey upscale.
 
   ocr.py IMG [--crop WxH+X+Y]        print every text line

@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # One MeshLab 2020.09 integration test (registered in CTest by CMakeLists.txt, label meshlab2020).
 #   run_test.sh run FILTER MESH [--quality MODE] [--select-x-gt V] [name=value ...]
 #       generated noisy MESH -> real meshlabserver with an .mlx listing every parameter ->

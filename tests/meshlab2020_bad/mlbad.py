@@ -1,4 +1,6 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 """Bad-input meshes and checks for the MeshLab 2020.09 robustness tests (issue 6). Imports the
 helpers of tests/meshlab2020/mltest.py (meshes, PLY reading/writing, parameter list) instead of
 copying them. Standard library only.

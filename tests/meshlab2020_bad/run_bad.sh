@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # One bad-input case through Debian 12's real meshlabserver with the plugin (issue 6; registered
 # in CTest by CMakeLists.txt, labels meshlab2020 and meshlab2020_bad).
 #   run_bad.sh CASE

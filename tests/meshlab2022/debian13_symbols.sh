@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # The 2022.02 plugin fits the MeshLab that Debian 13 users install: Debian 13's own
 # libmeshlab-common.so (from meshlab_2022.02+dfsg1-1_amd64.deb, unpacked, never run: it needs
 # trixie's glibc and Qt) is float MeshLab 2022.02 and exports every symbol that the plugin

@@ -1,4 +1,6 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 """Helpers of the MeshLab 2025.07 / 2022.02 GUI test (standard library only).
 
   gui_probe.py torus OUT.ply FACES [--seed N]

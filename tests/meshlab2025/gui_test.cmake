@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # ml_gui_test(TAG GUI PLUGIN_TARGET LABEL): the GUI test (gui_test.sh) of the float plugin
 # PLUGIN_TARGET in the MeshLab application GUI (2025.07 or 2022.02, built into the SDK cache by
 # scripts/meshlab-<TAG>-sdk.sh) under Xvfb, started through scripts/meshlab2025.sh. Test

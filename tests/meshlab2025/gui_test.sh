@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # GUI test of the plugin in the real MeshLab 2025.07 (or 2022.02) application under Xvfb, started
 # by scripts/meshlab2025.sh with a fresh, pre-seeded configuration. Three sessions:
 #   1. noisy sphere: Filters > Smoothing, Fairing and Deformation lists the three filters; the

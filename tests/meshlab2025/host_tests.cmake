@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # ml_host_tests(TAG PREC SDK OTHER_PLUGIN_TARGET REJECT_REASON LABEL): the pymeshlab-like host
 # tests of one FilterPlugin-API plugin binary (filter_implicit_fairing_ml<TAG>_<PREC>), used by
 # tests/meshlab2025 (2025.07 float and double) and tests/meshlab2022 (2022.02 float).

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // A pymeshlab-like host for the MeshLab 2025.07 integration tests: everything pymeshlab 2025.7
 // does to run a plugin's filter, except its pybind11 layer. No Python, no display, no GL.
 //

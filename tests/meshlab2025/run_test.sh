@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # One MeshLab 2025.07 or 2022.02 integration test (registered in CTest by host_tests.cmake, labels
 # meshlab2025, meshlab2022):
 # the plugin run the way pymeshlab 2025.7 runs it, by pymeshlab_host (no Python, no display).

@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # The Debian package, installed for real (label package; RUN_SERIAL: it changes the system).
 # Builds the .deb (scripts/package.sh), checks it with lintian when installed (errors fail),
 # `apt-get install ./implicit-fairing_*.deb`, then uses only the INSTALLED files:

@@ -1,4 +1,6 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 """Test of scripts/recipes.sh (label recipes): the feature-preserving recipes through the real
 meshlabserver keep the CAD part's creases while the filter alone rounds them.
 

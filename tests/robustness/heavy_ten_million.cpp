@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Issue 6, item 6: a 10 M-face mesh, generated here (a noisy torus grid, 2500 x 2000 vertices,
 // 10,000,000 faces), smoothed once with the plugin's defaults. Not part of the default CTest
 // run (it takes minutes and GBs): build the target robustness_heavy and run

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Helpers of the robustness tests (issue 6): run the engine on bad input and check that the
 // outcome is either a correct result or a refusal whose message names the problem, the count and
 // the MeshLab filter that repairs it, with the caller's mesh bit-identical afterwards.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // One test per row of docs/bad-input.md, through the engine: each bad input gives either a
 // correct result or a refusal whose message names the problem, the count and the MeshLab filter
 // that repairs it, and the caller's mesh is bit-identical after a refusal.

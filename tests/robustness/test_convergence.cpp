@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Issue 6, item 2: a solve that cannot converge within the iteration cap is reported with its
 // residual and leaves the mesh unchanged; with accept_unconverged the last iterate is written
 // and a warning carries the residual.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Issue 6, item 5: 1000 consecutive applications of each filter (fair() on the previous output,
 // the plugin's defaults, volume on): no NaN, no volume drift beyond 1e-9 relative per step, no
 // memory growth between the 100th and the 1000th application. Figures go to stdout.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // What every part of the command-line tool shares: its name in messages, the one exception a
 // failed run throws, and the number format of the help text and the summary.
 #pragma once

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // implicit-fairing: the engine on a mesh file, from the command line.
 //
 //   implicit-fairing IN OUT [options]        implicit-fairing --help lists every option

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // The tool's vcg mesh type. It mirrors MeshLab's CMeshO where the result depends on it (float
 // coordinates, per-vertex quality and flags), so a run gives the positions the filter gives in
 // MeshLab; normals and colours are there to be carried from the input to the output.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // The command line: every option, its help text and default, and its translation into the
 // filters' parameter values (filter_parameters::Values, so an option means exactly what the
 // MeshLab filter's parameter of the same name means) and then into engine options.

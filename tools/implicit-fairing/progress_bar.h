@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // A one-line progress bar on stderr: "implicit-fairing [#####     ]  50%", redrawn only when the
 // percentage changes, erased by clear() (or the destructor). Disabled, it prints nothing; the
 // tool enables it only when stderr is a terminal. (Debian 12 packages no C++ progress-bar

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Reading a mesh file with vcglib's importers (the vcglib of MeshLab 2025.07, so a file reads
 // as MeshLab 2025.07 reads it).
 #pragma once

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // What the tool prints after a successful run on stdout: one line of JSON (--json) or a
 // one-line summary.
 #pragma once

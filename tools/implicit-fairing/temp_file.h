@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // The temporary output: a private folder created next to OUT before the work starts (so an
 // unwritable folder fails early), holding a file with OUT's own name (the OBJ exporter writes
 // the name into the file). commit() renames the file over OUT; otherwise the destructor, or

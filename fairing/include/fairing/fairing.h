@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Implicit fairing of irregular meshes (Desbrun, Meyer, Schroeder, Barr, SIGGRAPH 1999):
 // the one entry point every host (MeshLab filters, the command-line tool, tests) calls.
 //

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Compact, array-based half-edge view of an indexed triangle mesh, built once per run. Building
 // it is where the input is validated.
 //

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Volume and area of mesh components, and their exact restoration (sections 3.1-3.2).
 //
 // Conventions: the volume of a closed, outward-oriented component is positive (eq. 10); it is

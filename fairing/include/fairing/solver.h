@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Preconditioned conjugate gradients for the symmetric positive definite systems of
 // implicit fairing (Appendix A, with CG in place of BiCG since the system is symmetric):
 //

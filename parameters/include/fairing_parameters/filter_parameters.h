@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // The filters' parameters, host-neutral: their internal names (what .mlx scripts and, lower-
 // cased, pymeshlab use), enum labels, defaults, and the one translation into fairing::Options.
 // The MeshLab plugin, the tests' reference tools and the command-line tool all go through here,

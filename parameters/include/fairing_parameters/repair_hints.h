@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // fairing::Error in the words of the host that shows it: when the engine refuses input that a
 // cleaning filter repairs (fairing::Repair), the message names that filter as the user calls it
 // there. MeshLab 2020.09 and 2025.07 name some filters differently in their menus, and

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Adapters between a vcg TriMesh (MeshLab's CMeshO or any mesh type built from vcg components
 // with coordinates, bit flags and, for quality weights, per-vertex quality) and the engine.
 //
