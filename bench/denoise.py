@@ -14,7 +14,8 @@ Laplace smoother C0 / C1 (openmesh_denoise). Error: RMS distance of the vertices
 surface in mean edges (common/denoise_shapes.h). Raw rows: denoise.jsonl; tables and plots:
 denoise_report.py.
 """
-import argparse, collections, concurrent.futures as cf, json, math, os, platform, re, shutil, subprocess, sys, tarfile, time
+from cgal_demo import cgal_demo_off
+import argparse, collections, concurrent.futures as cf, json, math, os, platform, re, shutil, subprocess, sys, time
 
 p = argparse.ArgumentParser()
 p.add_argument("--root", required=True)
@@ -69,23 +70,8 @@ CGAL_DEMO = ["bunny00", "fandisk", "camel", "elephant", "ChineseDragon-10kv", "a
 
 
 def cgal_off(name):
-    """data/meshes/NAME.off from Debian's libcgal-demo (apt-get download; never committed)."""
-    dst = os.path.join(meshes_dir, name + ".off")
-    if os.path.exists(dst):
-        return dst
-    d = os.path.join(meshes_dir, "deb-denoise")
-    os.makedirs(d, exist_ok=True)
-    subprocess.run(["apt-get", "download", "libcgal-demo"], cwd=d, check=True, capture_output=True)
-    deb = [f for f in os.listdir(d) if f.startswith("libcgal-demo") and f.endswith(".deb")][0]
-    x = os.path.join(d, "x")
-    subprocess.run(["dpkg", "-x", os.path.join(d, deb), x], check=True)
-    with tarfile.open(os.path.join(x, "usr/share/doc/libcgal-dev/data.tar.gz")) as t:
-        for n in CGAL_DEMO:
-            out = os.path.join(meshes_dir, n + ".off")
-            if not os.path.exists(out):
-                open(out, "wb").write(t.extractfile("data/meshes/%s.off" % n).read())
-    shutil.rmtree(d)
-    return dst
+    """data/meshes/NAME.off from Debian's libcgal-demo (all the study's scans at once)."""
+    return cgal_demo_off(meshes_dir, name, also=CGAL_DEMO)
 
 
 def scan(name):

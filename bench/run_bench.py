@@ -21,7 +21,8 @@ Options: --quick (no >= 1M-face meshes), --only NAME[,NAME] (only these meshes, 
 --results DIR (where runs.jsonl and results.md go; default bench/results), --micro-json FILE
 (this run's Google Benchmark JSON, for the targets table), --repeat N (timer repetitions).
 """
-import argparse, json, math, os, platform, re, shutil, subprocess, sys, tarfile, time
+from cgal_demo import cgal_demo_off
+import argparse, json, math, os, platform, re, subprocess, sys, time
 
 ML_LAP_T = math.sqrt(3) / (1 + 4 * math.sqrt(3))   # diffusion time per MeshLab cot step, in h^2
 ML_STEPS = 10
@@ -91,20 +92,7 @@ def jline(out):
 # ------------------------------------------------------------------ meshes
 def bunny_off():
     """bunny00.off (Stanford bunny scan, closed, 75k faces) from Debian's libcgal-demo."""
-    dst = os.path.join(meshes_dir, "bunny00.off")
-    if os.path.exists(dst):
-        return dst
-    d = os.path.join(meshes_dir, "deb")
-    os.makedirs(d, exist_ok=True)
-    subprocess.run(["apt-get", "download", "libcgal-demo"], cwd=d, check=True, capture_output=True)
-    deb = [f for f in os.listdir(d) if f.startswith("libcgal-demo") and f.endswith(".deb")][0]
-    x = os.path.join(d, "x")
-    subprocess.run(["dpkg", "-x", os.path.join(d, deb), x], check=True)
-    with tarfile.open(os.path.join(x, "usr/share/doc/libcgal-dev/data.tar.gz")) as t:
-        f = t.extractfile("data/meshes/bunny00.off")
-        open(dst, "wb").write(f.read())
-    shutil.rmtree(d)
-    return dst
+    return cgal_demo_off(meshes_dir, "bunny00")
 
 
 def prepare(name, make_clean):
