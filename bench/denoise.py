@@ -15,7 +15,7 @@ surface in mean edges (common/denoise_shapes.h). Raw rows: denoise.jsonl; tables
 denoise_report.py.
 """
 from cgal_demo import cgal_demo_off
-import argparse, collections, concurrent.futures as cf, json, math, os, platform, re, shutil, subprocess, sys, time
+import argparse, collections, concurrent.futures as cf, json, math, os, platform, re, subprocess, sys, time
 
 p = argparse.ArgumentParser()
 p.add_argument("--root", required=True)
