@@ -33,6 +33,16 @@ void check_finite(Cx v, int iteration) {
 
 bool any(const std::array<bool, 3>& active) { return active[0] || active[1] || active[2]; }
 
+// (K v)_i of the vector held in the first three columns of a 6-column (complex) array.
+inline void k_row_stride6(int i, const double* vs, const int* start, const int* column,
+                          const double* weight, double k[3]) {
+    k[0] = k[1] = k[2] = 0;
+    for (int e = start[i]; e < start[i + 1]; ++e) {
+        const double* vj = vs + 6 * column[e];
+        for (int c = 0; c < 3; ++c) k[c] += weight[e] * (vj[c] - vs[6 * i + c]);
+    }
+}
+
 }  // namespace
 
 bool complex_factor_applies(const LinearSystem& system) {
@@ -117,11 +127,8 @@ std::array<double, 3> ComplexFactorSolver::l2_residual_norms(ResidualNorm norm) 
         n, op.threads,
         [=](int i, double* a) {
             if (!f[i]) return;
-            double k[3] = {0, 0, 0};
-            for (int e = start[i]; e < start[i + 1]; ++e) {
-                const double* vj = vs + 6 * column[e];
-                for (int c = 0; c < 3; ++c) k[c] += weight[e] * (vj[c] - vs[6 * i + c]);
-            }
+            double k[3];
+            k_row_stride6(i, vs, start, column, weight, k);
             for (int c = 0; c < 3; ++c) {
                 const double res = rs[6 * i + c] + s * k[c];
                 a[c] = l2 ? a[c] + res * res : std::max(a[c], std::abs(res));
@@ -230,11 +237,8 @@ std::array<double, 3> ComplexFactorSolver::set_residual(const Positions& b, cons
             double* ri = rs + 6 * i;
             for (int c = 0; c < 6; ++c) ri[c] = 0;
             if (!f[i]) return;
-            double k[3] = {0, 0, 0};
-            for (int e = start[i]; e < start[i + 1]; ++e) {
-                const double* vj = vs + 6 * column[e];
-                for (int c = 0; c < 3; ++c) k[c] += weight[e] * (vj[c] - vs[6 * i + c]);
-            }
+            double k[3];
+            k_row_stride6(i, vs, start, column, weight, k);
             for (int c = 0; c < 3; ++c) {
                 ri[c] = bs[3 * i + c] - (d[i] * xs[3 * i + c] + lambda * k[c]);
                 a[c] = l2 ? a[c] + ri[c] * ri[c] : std::max(a[c], std::abs(ri[c]));
