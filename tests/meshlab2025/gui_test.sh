@@ -226,7 +226,7 @@ shot sphere-applied
 # under the filter's dialog until that is closed)
 click_text sphere-applied "Close" "$dialog"
 wait_for "the dialog to close" 30 bash -c "! xdotool search --onlyvisible --name '^Implicit Fairing: Curvature Flow\$' | grep -q ."
-wait_for "the figures in the log pane" 30 find_text sphere-log "Vertices moved: 642 of" \
+wait_for "the figures in the log pane" 30 find_text sphere-log "CG iterations in total:" \
     "$(geometry "$main_title" | awk -F'[x+]' '{ printf "%dx%d+%d+%d", 450, $2, $3 + $1 - 450, $4 }')"
 echo "the log pane shows the figures: $work/sphere-log.png"
 export_mesh "$work/exports/sphere-applied.ply"
