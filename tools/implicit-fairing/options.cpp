@@ -107,7 +107,7 @@ void addFilterParameters(CLI::App& app, CommandLine& cl, const Values& d)
                 return used == t.size() && used > 0 ? std::string()
                                                     : "expected 'auto' or a number, got '" + t + "'";
             },
-            "auto|T"));
+            ""));
     app.add_option_function<int>(
            "--steps",
            [&cl](int n) {
