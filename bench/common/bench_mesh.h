@@ -177,6 +177,15 @@ inline Mesh read_mesh(const std::string& path) {
     return read_ply(path);
 }
 
+// The mesh as the float hosts see it (MeshLab 2020.09, PLY read as float): every peer and our
+// sweep start from the same rounded coordinates.
+inline Mesh read_mesh_as_float(const std::string& path) {
+    Mesh m = read_mesh(path);
+    for (auto& p : m.v)
+        for (auto& c : p) c = double(float(c));
+    return m;
+}
+
 // Binary little-endian PLY, double coordinates (float when as_float: MeshLab 2020 reads both).
 inline void write_ply(const std::string& path, const Mesh& m, bool as_float = false) {
     std::ofstream out(path, std::ios::binary);

@@ -26,9 +26,7 @@ int main(int argc, char** argv) {
         return 2;
     }
     try {
-        bench::Mesh in = bench::read_mesh(argv[1]);
-        for (auto& p : in.v)
-            for (auto& c : p) c = double(float(c));
+        bench::Mesh in = bench::read_mesh_as_float(argv[1]);
         const bench::Mesh clean = bench::read_mesh(argv[2]);
         const std::string spec = argv[3];
         const bench::Truth truth(spec == "mesh" ? argv[2] : spec);

@@ -122,10 +122,7 @@ void print_run(const char* kind, double ts, const Run& r) {
 }
 
 int sweep(int argc, char** argv) {
-    const Mesh input0 = read_mesh(argv[2]), clean = read_mesh(argv[3]);
-    Mesh input = input0;
-    for (auto& p : input.v)
-        for (auto& c : p) c = double(float(c));
+    const Mesh input = read_mesh_as_float(argv[2]), clean = read_mesh(argv[3]);
     const Truth truth(truth_spec(argv[4], argv[3]));
     const double h = mean_edge(clean);
     fairing::Options o;
