@@ -8,7 +8,7 @@
 //   info IN                                  JSON: vertices, faces, mean_edge, volume
 //   metrics CLEAN INPUT RESULT               JSON: error of RESULT (and INPUT) to CLEAN's
 //                                            surface, volume change vs INPUT, tangential drift
-//   fair IN OUT.ply OP ORDER TIME_STEP [STEPS [threads=N] [preconditioner=P] [freeze=1]]
+//   fair IN OUT.ply OP ORDER TIME_STEP|auto [STEPS [threads=N] [preconditioner=P] [freeze=1]]
 //                                            runs fairing::fair() directly: JSON with seconds,
 //                                            iterations and the engine's extra peak memory
 #include "bench_mesh.h"
@@ -117,7 +117,8 @@ int main(int argc, char** argv) {
                  : op == "scale-dependent" ? fairing::Operator::ScaleDependent
                                            : fairing::Operator::CurvatureFlow;
             o.order = std::atoi(argv[5]);
-            o.time_step = std::atof(argv[6]);
+            if (std::string(argv[6]) == "auto") o.time_step.reset();  // automatic strength
+            else o.time_step = std::atof(argv[6]);
             o.steps = argc > 7 ? std::atoi(argv[7]) : 1;
             // Optional after STEPS: threads=N, preconditioner=auto|jacobi|factored, freeze=0|1.
             for (int k = 8; k < argc; ++k) {
@@ -149,9 +150,11 @@ int main(int argc, char** argv) {
             write_ply(argv[3], out);
             std::printf("{\"seconds\":%.6f,\"seconds_engine\":%.6f,\"cg_iterations\":%d,"
                         "\"inner_iterations\":%d,\"cpu_seconds\":%.6f,"
-                        "\"extra_peak_bytes_per_vertex\":%.1f,\"peak_rss_kb\":%ld}\n",
+                        "\"extra_peak_bytes_per_vertex\":%.1f,\"peak_rss_kb\":%ld,"
+                        "\"time_step\":%.9g,\"strength_seconds\":%.6f,\"strength_iterations\":%d}\n",
                         s, r.seconds, r.total_iterations, r.total_inner_iterations, cpu,
-                        1024.0 * double(after - before) / double(m.v.size()), after);
+                        1024.0 * double(after - before) / double(m.v.size()), after, r.time_step,
+                        r.strength_seconds, r.strength_iterations);
         } else return usage();
     } catch (const std::exception& e) {
         std::cerr << "fairing-bench-tool: " << e.what() << "\n";

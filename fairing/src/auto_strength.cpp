@@ -11,8 +11,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <complex>
 #include <cstdint>
 #include <limits>
+#include <memory>
 
 namespace fairing {
 namespace detail {
@@ -152,6 +154,7 @@ struct Filter {
     double lambda = 0;
     int steps = 1;
     bool explicit_steps = false;
+    bool squared = false;  // T is the first-order G1 and the filter's G = G1^2 (see Context)
 };
 
 // Three independent Lanczos processes on G (one per column), in the coordinates q = D^-1/2 v,
@@ -171,7 +174,17 @@ struct Context {
     std::vector<char> data;   // free data rows: they count in the risk and the trace
     Positions scratch;
     int n = 0;
+    // L^2 with D = M (no soft weights): on the free rows K P M^-1 K = C1 M^-1 C1, so the L^2
+    // filter's G is G1^2 with G1 = M^-1/2 C1 M^-1/2 (C1 = -K, unit (mean edge)^2). The Lanczos
+    // processes then run on G1: one product with K per step instead of two, and as many steps
+    // as the filter's poles at +-i/sqrt(lambda) need (about the complex solve's iterations)
+    // instead of those of the poles of (1 + lambda g)^-1 on the squared spectrum.
+    bool squared = false;
 };
+
+Filter filter_at(const Context& ctx, double lambda) {
+    return Filter{lambda, ctx.p.steps, ctx.p.explicit_integration, ctx.squared};
+}
 
 // product = unit * C current; returns alpha = <current, D^-1 product>_D per column.
 std::array<double, 3> multiply(Context& ctx, Lanczos& l) {
@@ -237,6 +250,36 @@ int size_of(const Lanczos& l, int c) {
     return std::min(static_cast<int>(l.alpha[c].size()), static_cast<int>(l.beta[c].size()) + 1);
 }
 
+// filtered() for Context::squared: (I + lambda T^2)^-1 = Re (I + i sqrt(lambda) T)^-1 on real
+// vectors, the tridiagonal complex symmetric I + i sqrt(lambda) T factored once (LDL', no
+// pivoting: its leading minors prod (1 + i sqrt(lambda) theta) never vanish).
+Eigen::VectorXd filtered_squared(const Lanczos& l, int c, const Filter& f, double& kept) {
+    using Complex = std::complex<double>;
+    const int k = size_of(l, c);
+    Eigen::VectorXd w = Eigen::VectorXd::Zero(k), sum = Eigen::VectorXd::Zero(k);
+    kept = 0;
+    if (k == 0) return sum;
+    w(0) = 1;
+    const std::vector<double>& a = l.alpha[c];
+    const std::vector<double>& b = l.beta[c];
+    const Complex s(0, std::sqrt(f.lambda));
+    std::vector<Complex> pivot(k), upper(k), z(k);
+    for (int i = 0; i < k; ++i) {
+        const Complex off = i > 0 ? s * b[i - 1] : Complex(0);
+        pivot[i] = 1.0 + s * a[i] - (i > 0 ? off * upper[i - 1] : Complex(0));
+        upper[i] = i + 1 < k ? s * b[i] / pivot[i] : Complex(0);
+    }
+    for (int step = 0; step < f.steps; ++step) {
+        for (int i = 0; i < k; ++i)  // forward: L z = w
+            z[i] = (w(i) - (i > 0 ? s * b[i - 1] * z[i - 1] : Complex(0))) / pivot[i];
+        for (int i = k - 2; i >= 0; --i) z[i] -= upper[i] * z[i + 1];  // back: L' x = z
+        for (int i = 0; i < k; ++i) w(i) = z[i].real();
+        sum += w;
+    }
+    kept = w(0);
+    return f.lambda * sum;
+}
+
 // The filter applied to e1 through the Lanczos tridiagonal matrix T_k: w_j = (I + lambda T)^-1
 // w_{j-1} (explicit: (I - lambda T) w_{j-1}), w_0 = e1, by the Thomas algorithm (I + lambda T
 // is symmetric positive definite). Returns the displacement coefficients
@@ -250,6 +293,7 @@ Eigen::VectorXd filtered(const Lanczos& l, int c, const Filter& f, double& kept)
     w(0) = 1;
     const std::vector<double>& a = l.alpha[c];
     const std::vector<double>& b = l.beta[c];
+    if (f.squared && !f.explicit_steps) return filtered_squared(l, c, f, kept);
     std::vector<double> pivot(k), upper(k);
     if (!f.explicit_steps) {  // LDL' of I + lambda T, once
         for (int i = 0; i < k; ++i) {
@@ -288,7 +332,7 @@ std::vector<double> traces(const Context& ctx, const Lanczos& z, double count,
     int probes = 0;
     for (int c = 0; c < 3; ++c) probes += size_of(z, c) > 0;
     for (std::size_t g = 0; g < grid.size(); ++g) {
-        const Filter filter{grid[g], ctx.p.steps, ctx.p.explicit_integration};
+        const Filter filter = filter_at(ctx, grid[g]);
         for (int c = 0; c < 3; ++c) {
             if (size_of(z, c) == 0) continue;
             double kept = 0;
@@ -306,14 +350,15 @@ std::uint64_t mix(std::uint64_t v) {  // splitmix64: probe signs independent of 
     return v ^ (v >> 31);
 }
 
-// First basis vectors: u = D^-1/2 C x for the positions, Rademacher probes on the data rows.
-void start(Context& ctx, Lanczos& u, Lanczos& z, double& count) {
+// First basis vector of the movement: u = D^-1/2 C x for the positions.
+void start_movement(Context& ctx, Lanczos& u) {
     const int n = ctx.n;
     u.current.setZero(n, 3);
-    z.current.setZero(n, 3);
-    ctx.c.apply(*ctx.p.x, u.product, ctx.scratch);
+    LinearSystem filter_c = ctx.c;  // the filter's own C (Context::squared runs on C1)
+    filter_c.order = ctx.p.order;
+    filter_c.lambda_dt = ctx.p.length_unit;
+    filter_c.apply(*ctx.p.x, u.product, ctx.scratch);
     std::array<double, 3> su{{0, 0, 0}};
-    count = 0;
     for (int i = 0; i < n; ++i) {
         if (!(*ctx.p.free)[i]) continue;
         for (int c = 0; c < 3; ++c) {
@@ -321,23 +366,120 @@ void start(Context& ctx, Lanczos& u, Lanczos& z, double& count) {
             su[c] += v * v / ctx.d[i];
             u.current(i, c) = v / ctx.d[i];
         }
-        if (!ctx.data[i]) continue;
+    }
+    for (int c = 0; c < 3; ++c) {
+        u.start_norm[c] = std::sqrt(su[c]);
+        u.active[c] = u.start_norm[c] > 0;
+        u.current.col(c) *= u.active[c] ? 1 / u.start_norm[c] : 0.0;
+    }
+    u.previous.setZero(n, 3);
+}
+
+// First basis vectors of the trace: Rademacher probes on the data rows; count = data rows.
+void start_probes(Context& ctx, Lanczos& z, double& count) {
+    const int n = ctx.n;
+    z.current.setZero(n, 3);
+    count = 0;
+    for (int i = 0; i < n; ++i) {
+        if (!(*ctx.p.free)[i] || !ctx.data[i]) continue;
         ++count;
         const std::uint64_t bits = mix(static_cast<std::uint64_t>(i));
         for (int c = 0; c < 3; ++c) z.current(i, c) = ((bits >> c) & 1 ? 1.0 : -1.0) / std::sqrt(ctx.d[i]);
     }
     for (int c = 0; c < 3; ++c) {
-        u.start_norm[c] = std::sqrt(su[c]);
         z.start_norm[c] = std::sqrt(count);
-        u.active[c] = u.start_norm[c] > 0;
         z.active[c] = count > 0;
-        const double su_inv = u.active[c] ? 1 / u.start_norm[c] : 0.0;
-        const double sz_inv = z.active[c] ? 1 / z.start_norm[c] : 0.0;
-        u.current.col(c) *= su_inv;
-        z.current.col(c) *= sz_inv;
+        z.current.col(c) *= z.active[c] ? 1 / z.start_norm[c] : 0.0;
     }
-    u.previous.setZero(n, 3);
     z.previous.setZero(n, 3);
+}
+
+// Monte-Carlo divergence (header, "Divergence"): the problem at y + eps b n, its movement's
+// Lanczos process, and the probe's functional b n . v_j of both processes' basis vectors.
+struct Perturbation {
+    double eps = 0;
+    Positions probe;  // b_i n_i on the data rows, 0 elsewhere
+    Positions x;
+    SparseOperator op;
+    std::vector<double> weight;
+    StrengthProblem problem;
+    std::unique_ptr<Context> ctx;
+    Lanczos u;
+    std::array<std::vector<double>, 3> w, w_perturbed;  // [c][j]: b n . (basis vector j)
+};
+
+// Appends b n . v_j for the current basis vector of every active column (serial: the same sum
+// on any number of threads).
+void record(const Lanczos& l, const Positions& probe, std::array<std::vector<double>, 3>& w) {
+    for (int c = 0; c < 3; ++c) {
+        if (!l.active[c]) continue;
+        double sum = 0;
+        for (Eigen::Index i = 0; i < probe.rows(); ++i) sum += probe(i, c) * l.current(i, c);
+        w[c].push_back(sum);
+    }
+}
+
+// b n . r(lambda) from a movement process and its functionals.
+double probed_movement(const Lanczos& l, const std::array<std::vector<double>, 3>& w,
+                       const Filter& filter) {
+    double total = 0;
+    for (int c = 0; c < 3; ++c) {
+        double kept = 0;
+        const Eigen::VectorXd coef = filtered(l, c, filter, kept);
+        const int k = std::min(static_cast<int>(coef.size()), static_cast<int>(w[c].size()));
+        for (int j = 0; j < k; ++j) total += l.start_norm[c] * coef(j) * w[c][j];
+    }
+    return total;
+}
+
+// The filter's divergence over the data rows for every lambda of the grid:
+// N - b n . (r'(lambda) - r(lambda)) / eps.
+std::vector<double> divergences(const Context& ctx, const Lanczos& u, const Perturbation& mc,
+                                double count, const std::vector<double>& grid) {
+    std::vector<double> out(grid.size(), 0.0);
+    for (std::size_t g = 0; g < grid.size(); ++g) {
+        const Filter filter = filter_at(ctx, grid[g]);
+        const double moved = probed_movement(mc.u, mc.w_perturbed, filter) -
+                             probed_movement(u, mc.w, filter);
+        out[g] = std::max(0.0, std::min(count, count - moved / mc.eps));
+    }
+    return out;
+}
+
+// Relative size of the Monte-Carlo perturbation: small enough for a first-order difference,
+// large enough against the Lanczos processes' rounding (Ramani et al. use about sigma / 100).
+constexpr double kPerturbation = 1e-2;
+
+// The perturbed problem, or nothing when the operator is linear in the data or the perturbed
+// one loses a free row's mass.
+std::unique_ptr<Perturbation> perturb(const Context& ctx, const Positions& normals, double sigma) {
+    const StrengthProblem& p = ctx.p;
+    if (!p.assemble_at) return nullptr;
+    auto mc = std::make_unique<Perturbation>();
+    mc->eps = kPerturbation * sigma;
+    mc->probe.setZero(ctx.n, 3);
+    mc->x = *p.x;
+    for (int i = 0; i < p.data_vertices; ++i) {
+        if (!ctx.data[i]) continue;
+        const double b = mix(static_cast<std::uint64_t>(i) ^ 0x27d4eb2f165667c5ull) & 1 ? 1.0 : -1.0;
+        mc->probe.row(i) = b * normals.row(i);
+        mc->x.row(i) += mc->eps * mc->probe.row(i);
+    }
+    mc->op = p.assemble_at(mc->x);
+    mc->op.threads = p.op->threads;
+    if (mc->op.size() != p.op->size()) return nullptr;
+    mc->problem = p;
+    mc->problem.op = &mc->op;
+    mc->problem.x = &mc->x;
+    mc->ctx.reset(new Context{mc->problem, ctx.c, ctx.d, ctx.data, Positions(), ctx.n, ctx.squared});
+    mc->ctx->c.op = &mc->op;
+    for (int i = 0; i < ctx.n; ++i) {
+        if (!(*p.free)[i]) continue;
+        if (!(mc->op.mass[i] > 0)) return nullptr;
+        mc->ctx->d[i] = mc->op.mass[i] / (i < p.data_vertices ? (*p.weight)[i] : 1.0);
+    }
+    start_movement(*mc->ctx, mc->u);
+    return mc;
 }
 
 // One Lanczos step of a block: alpha measured, then the next vector.
@@ -443,7 +585,7 @@ public:
         if (last <= first) return out;
         Eigen::MatrixXf y = Eigen::MatrixXf::Zero(used_, static_cast<Eigen::Index>(last - first));
         for (std::size_t g = first; g < last; ++g) {
-            const Filter filter{grid[g], ctx.p.steps, ctx.p.explicit_integration};
+            const Filter filter = filter_at(ctx, grid[g]);
             for (int c = 0; c < 3; ++c) {
                 double kept = 0;
                 const Eigen::VectorXd coef = filtered(u, c, filter, kept);
@@ -527,10 +669,10 @@ constexpr std::size_t kAhead = 6;
 
 // The risk curve at a checkpoint: traces everywhere, RSS_n from where the filter starts to act
 // up to a few points past those that have converged since the last checkpoint.
-Curves checkpoint(const Context& ctx, const Lanczos& u, const Lanczos& z, const Sketch& sketch,
-                  const Search& s, const Curves& last) {
+Curves checkpoint(const Context& ctx, const Lanczos& u, const Lanczos& z, const Perturbation* mc,
+                  const Sketch& sketch, const Search& s, const Curves& last) {
     Curves now;
-    now.trace = traces(ctx, z, s.count, s.grid);
+    now.trace = mc ? divergences(ctx, u, *mc, s.count, s.grid) : traces(ctx, z, s.count, s.grid);
     while (now.first + 1 < s.grid.size() && now.trace[now.first + 1] > 0.98 * s.count)
         ++now.first;
     // Evaluate up to 2 kAhead points past the last checkpoint's converged ones (those up to
@@ -564,8 +706,8 @@ Curves checkpoint(const Context& ctx, const Lanczos& u, const Lanczos& z, const 
 
 // Runs both Lanczos processes, with the sketched risk at checkpoints, until the risk's
 // minimizer has settled inside the converged part of the curves.
-Search search(Context& ctx, Lanczos& u, Lanczos& z, Sketch& sketch, const Positions& normals,
-              double count, double sigma) {
+Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sketch,
+              const Positions& normals, double count, double sigma) {
     Search s;
     s.count = count;
     const double top = ctx.p.explicit_integration ? std::min(ctx.p.max_time_step, 1e7) : 1e7;
@@ -576,16 +718,22 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Sketch& sketch, const Positi
     int next_check = 6;
     for (int j = 0; j < kMaxSteps; ++j) {
         const bool u_active = u.active[0] || u.active[1] || u.active[2];
-        const bool z_active = z.active[0] || z.active[1] || z.active[2];
+        const bool z_active = !mc && (z.active[0] || z.active[1] || z.active[2]);
+        const bool mc_active = mc && (mc->u.active[0] || mc->u.active[1] || mc->u.active[2]);
         if (u_active) sketch.add(u, normals);
+        if (u_active && mc) record(u, mc->probe, mc->w);
+        if (mc_active) record(mc->u, mc->probe, mc->w_perturbed);
         if (u_active) step(ctx, u, j);
         if (z_active) step(ctx, z, j);
+        if (mc_active) step(*mc->ctx, mc->u, j);
         if (ctx.p.progress) ctx.p.progress(0.7 * (1 - 16.0 / (16.0 + j)));
-        const bool exhausted = !(u.active[0] || u.active[1] || u.active[2] || z.active[0] ||
-                                 z.active[1] || z.active[2]);
+        const bool exhausted =
+            !(u.active[0] || u.active[1] || u.active[2] ||
+              (mc ? mc->u.active[0] || mc->u.active[1] || mc->u.active[2]
+                  : z.active[0] || z.active[1] || z.active[2]));
         if (j + 1 < next_check && !exhausted) continue;
         next_check = std::max(j + 2, static_cast<int>(1.4 * (j + 1)));
-        Curves now = checkpoint(ctx, u, z, sketch, s, last);
+        Curves now = checkpoint(ctx, u, z, mc, sketch, s, last);
         if (exhausted) {  // T is exact: every evaluated point holds
             now.reach = now.first;
             while (now.reach < now.rss.size() && std::isfinite(now.rss[now.reach])) ++now.reach;
@@ -682,6 +830,7 @@ StrengthEstimate estimate_strength(const StrengthProblem& p) {
     ctx.c.free = *p.free;
     ctx.c.lambda_dt = p.length_unit;
     ctx.c.order = p.order;
+    ctx.squared = p.order == 2 && !p.explicit_integration;
     ctx.c.diagonal.assign(ctx.n, 0.0);
     ctx.d.assign(ctx.n, 1.0);
     ctx.data.assign(ctx.n, 0);
@@ -696,12 +845,20 @@ StrengthEstimate estimate_strength(const StrengthProblem& p) {
     }
     if (count == 0) return e;
     mean_d /= count;
+    for (int i = 0; i < ctx.n && ctx.squared; ++i)
+        if ((*p.free)[i] && !(ctx.d[i] == p.op->mass[i])) ctx.squared = false;  // soft weights
+    if (ctx.squared) {
+        ctx.c.order = 1;
+        ctx.c.lambda_dt = std::sqrt(p.length_unit);
+    }
     e.data_count = count;
 
     Lanczos u, z;
-    start(ctx, u, z, count);
+    start_movement(ctx, u);
+    start_probes(ctx, z, count);
+    const std::unique_ptr<Perturbation> mc = perturb(ctx, normals, e.noise_level);
     Sketch sketch(ctx, static_cast<int>(count), restoration(p, normals));
-    const Search found = search(ctx, u, z, sketch, normals, count, e.noise_level);
+    const Search found = search(ctx, u, z, mc.get(), sketch, normals, count, e.noise_level);
     e.lanczos_steps = static_cast<int>(
         std::max({u.alpha[0].size(), u.alpha[1].size(), u.alpha[2].size()}));
     // The final grid around the minimizer, within the converged part.
@@ -710,7 +867,7 @@ StrengthEstimate estimate_strength(const StrengthProblem& p) {
     for (int g = 0; g < kGrid; ++g) e.grid.push_back(lo * std::pow(hi / lo, g / (kGrid - 1.0)));
     std::vector<double> gain;
     e.rss = sketch.rss(ctx, u, e.grid, 0, e.grid.size(), &gain);
-    e.trace = traces(ctx, z, count, e.grid);
+    e.trace = mc ? divergences(ctx, u, *mc, count, e.grid) : traces(ctx, z, count, e.grid);
     for (std::size_t g = 0; g < e.grid.size(); ++g) e.trace[g] *= gain[g];
     choose(e);
     return e;

@@ -36,10 +36,21 @@
 //   bi-Laplacian of the positions is of fourth order in the edge length, so curvature hardly
 //   inflates it.
 //
-// Limits (measured on CGAL demo scans, fandisk and elephant): the weights of eq. 11 and eq. 14 are computed on the noisy
-// mesh, so their filter depends on the noise; past ~0.4 edges of noise the linear risk estimate
-// misjudges them and chooses too weak a step. With a recomputed operator (steps > 1, not frozen)
-// the frozen-operator model is only approximate.
+// - Divergence: SURE's 2 sigma^2 tr H is the divergence of the filter f(y) = H y only when H does
+//   not depend on y. The weights of eq. 11 and eq. 14 are computed on the noisy mesh, so the
+//   filter's true divergence is tr H plus sum_i b_i n_i . (dH/dy [b n]) y, which tr H misses
+//   (measured: the effective divergence of one curvature-flow L^2 step on a sphere with half an
+//   edge of noise is 1.6-1.8 tr H below time step 100, and the risk minimum moves 40x). For
+//   them the divergence is estimated by Monte-Carlo SURE (Ramani, Blu & Unser, "Monte-Carlo
+//   SURE: a black-box optimization of regularization parameters for general denoising
+//   algorithms", IEEE TIP 17(9), 2008): div f ~ b . (f(y + eps b) - f(y)) / eps with one
+//   Rademacher probe b along the normals, where f(y + eps b) comes from a second Lanczos process
+//   on the operator assembled at y + eps b (started at its own u), run in lockstep with the
+//   first, so that for every lambda at once div(lambda) = N - b . (r'(lambda) - r(lambda)) / eps
+//   (r: the movement, f = y - r). It replaces the Hutchinson probes, at the same cost.
+//
+// Limits: with a recomputed operator (steps > 1, not frozen) the frozen-operator model is only
+// approximate.
 //
 // Conventions: lambda is the dimensionless time step of Options::time_step (C is scaled by the
 // operator's length unit); rows at or past `data_vertices` (virtual vertices) move with the
@@ -76,6 +87,10 @@ struct StrengthProblem {
     std::vector<int> restored;
     std::vector<char> offset;
     std::function<void(double)> progress;  // fraction of the estimate done, in [0, 1]
+    // The operator assembled at other positions (same rows, virtual vertices included), for the
+    // operators whose weights depend on the positions (eq. 11, eq. 14); empty for the umbrella,
+    // whose filter is linear in the data. See "Divergence" above.
+    std::function<SparseOperator(const Positions&)> assemble_at;
 };
 
 struct StrengthEstimate {

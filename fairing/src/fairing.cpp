@@ -445,6 +445,11 @@ void Run::choose_time_step() {
         problem.offset.push_back(result_.components[c].has_fixed ? 1 : 0);
     }
     if (options_.progress) problem.progress = [this](double f) { report_progress(kShare * f); };
+    if (options_.op != Operator::Umbrella)  // weights of the positions: Monte-Carlo divergence
+        problem.assemble_at = [this](const Positions& at) {
+            return assemble(options_.op, work_mesh(he_, work_, virtual_mode_), at,
+                            options_.normalized, nullptr, options_.threads);
+        };
     const detail::StrengthEstimate e = detail::estimate_strength(problem);
     progress_offset_ = std::max(progress_, kShare);
     time_step_ = e.time_step;
