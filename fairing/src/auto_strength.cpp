@@ -479,6 +479,7 @@ std::unique_ptr<Perturbation> perturb(const Context& ctx, const Positions& norma
         mc->ctx->d[i] = mc->op.mass[i] / (i < p.data_vertices ? (*p.weight)[i] : 1.0);
     }
     start_movement(*mc->ctx, mc->u);
+    mc->x.resize(0, 3);  // only the start vector needed the perturbed positions
     return mc;
 }
 
@@ -855,8 +856,9 @@ StrengthEstimate estimate_strength(const StrengthProblem& p) {
 
     Lanczos u, z;
     start_movement(ctx, u);
-    start_probes(ctx, z, count);
     const std::unique_ptr<Perturbation> mc = perturb(ctx, normals, e.noise_level);
+    if (mc) z.active = {{false, false, false}};  // the divergence replaces the probes
+    else start_probes(ctx, z, count);
     Sketch sketch(ctx, static_cast<int>(count), restoration(p, normals));
     const Search found = search(ctx, u, z, mc.get(), sketch, normals, count, e.noise_level);
     e.lanczos_steps = static_cast<int>(
