@@ -244,8 +244,8 @@ void Run::record(const SolveStats& stats, int step, const char* system) {
         number(stats.residual) + ", tolerance " + number(options_.tolerance) +
         (needle_faces_ > 0
              ? " (" + detail::count_of(needle_faces_, "face is a needle", "faces are needles") +
-                   ", with an angle below 1e-4 rad: their cotangent weights make the system "
-                   "ill-conditioned; MeshLab's 'Remove T-Vertices by Edge Flip' or 'Merge Close "
+                   ", with an angle below 0.01 rad: their cotangent weights, even capped at "
+                   "100, make the system ill-conditioned; MeshLab's 'Remove T-Vertices by Edge Flip' or 'Merge Close "
                    "Vertices' repairs them)"
              : std::string());
     if (!options_.accept_unconverged)
@@ -578,6 +578,11 @@ void Run::warn_about_input() {
     if (worst_.massless_vertices > 0)
         warn(detail::count_of(worst_.massless_vertices, "vertex has", "vertices have") +
              " only degenerate faces around it and was kept in place");
+    if (needle_faces_ > 0)
+        warn(detail::count_of(needle_faces_, "face was a needle", "faces were needles") +
+             " (an angle below 0.01 rad) in some step; their cotangent weights were capped at "
+             "100 (MeshLab's 'Remove T-Vertices by Edge Flip' or 'Merge Close Vertices' "
+             "repairs them)");
 }
 
 Result Run::run() {

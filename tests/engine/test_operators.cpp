@@ -535,3 +535,42 @@ TEST(Operators, MeanEdgeLengthOfASmallMeshIsTheRunningSum) {
         }
     EXPECT_EQ(fairing::mean_edge_length(he, m.positions), sum / count);
 }
+
+// Needles (operators.cpp, kCotangentCap): a T-vertex 1e-7 off the diagonal of its quad makes two
+// faces with an angle of ~1e-7 (cotangents ~1e7) and one of ~pi. Their cotangents are capped, so
+// every weight stays within the cap's reach (an edge joins a capped corner, <= 100, and at most
+// one exact corner across it, |cot| < 10 on this grid), the operator
+// stays negative semi-definite (x . K x <= 0 for any x), and a face that is no needle keeps its
+// exact weights: the same mesh with the T-vertex 0.05 off has no needle and weights far below.
+TEST(Operators, NeedleCotangentsAreCappedAndStayNegativeSemiDefinite) {
+    for (double off : {1e-7, 0.05}) {
+        SCOPED_TRACE(testing::Message() << "offset " << off);
+        TriangleMesh m = meshes::grid(8, 6, 8, 6);
+        meshes::Rng rng(4);
+        for (int i = 0; i < m.positions.rows(); ++i) m.positions(i, 2) = 0.3 * rng.symmetric();
+        const int a = meshes::grid_index(2, 2, 8), moved = meshes::grid_index(3, 2, 8);
+        const int c = meshes::grid_index(3, 3, 8);
+        m.positions.row(a) << 2.0, 2.0, 0.0;
+        m.positions.row(c) << 3.0, 3.0, 0.0;
+        m.positions.row(moved) << 2.5 + off, 2.5 - off, 0.0;
+        const HalfEdgeMesh mesh = HalfEdgeMesh::build(m.positions, m.triangles);
+        fairing::AssemblyReport report;
+        const SparseOperator op =
+            fairing::assemble(Operator::CurvatureFlow, mesh, m.positions, false, &report);
+        if (off < 1e-3) EXPECT_GE(report.needle_faces, 1);
+        else EXPECT_EQ(report.needle_faces, 0);
+        double largest = 0;
+        for (int i = 0; i < op.size(); ++i)
+            for (int k = op.row_start[i]; k < op.row_start[i + 1]; ++k)
+                if (op.column[k] != i) largest = std::max(largest, std::abs(op.weight[k]));
+        EXPECT_LE(largest, 100 + 10);
+        EXPECT_GT(largest, off < 1e-3 ? 50.0 : 0.0);  // the needle's edge still dominates
+        Positions x(op.size(), 3), kx;
+        for (int trial = 0; trial < 20; ++trial) {
+            for (int i = 0; i < x.rows(); ++i)
+                for (int j = 0; j < 3; ++j) x(i, j) = rng.symmetric();
+            op.apply_k(x, kx);
+            EXPECT_LE((x.array() * kx.array()).sum(), 1e-9 * largest);
+        }
+    }
+}

@@ -37,7 +37,8 @@ struct AssemblyReport {
     int zero_area_faces = 0;   // skipped by the curvature operator
     int floored_edges = 0;     // edges shorter than 1e-4 of the mean, lengthened for 1/|e|
     int massless_vertices = 0; // vertices with faces but no mass: their star is degenerate
-    int needle_faces = 0;      // curvature: faces with an angle below ~1e-4 rad (|cot| > 1e4)
+    int needle_faces = 0;      // curvature: faces with an angle below ~0.01 rad (|cot| > 100),
+                               // whose cotangents were capped at 100 (operators.cpp)
 };
 
 // Assembles op on the mesh at the given positions (curvature: eq. 14, faces of zero area skipped;
