@@ -554,26 +554,37 @@ public:
     bool exact() const { return exact_; }
     // Adds the current basis vector of every active column.
     void add(const Lanczos& u, const Positions& normals) {
+        // One pass over the vertices for the three columns: this runs at every Lanczos step.
+        std::array<Eigen::Index, 3> slot{{-1, -1, -1}};
         for (int c = 0; c < 3; ++c) {
             if (!u.active[c]) continue;
             if (used_ == columns_.cols())
                 columns_.conservativeResize(rows_, std::max<Eigen::Index>(24, 2 * used_));
-            auto col = columns_.col(used_);
-            col.setZero();
-            for (std::size_t i = 0; i < bucket_.size(); ++i)
-                if (bucket_[i] >= 0)
-                    col(bucket_[i]) += sign_[i] * static_cast<float>(normals(i, c) * u.current(i, c));
-            std::vector<double> by_volume(restoration_.components, 0.0), by_field = by_volume;
-            for (std::size_t i = 0; i < restoration_.component.size(); ++i) {
-                const int k = restoration_.component[i];
-                if (k < 0) continue;
+            columns_.col(used_).setZero();
+            index_[c].push_back(static_cast<int>(used_));
+            slot[c] = used_++;
+        }
+        const int nc = restoration_.components;
+        std::array<std::vector<double>, 3> by_volume, by_field;
+        for (int c = 0; c < 3; ++c) by_volume[c].assign(slot[c] >= 0 ? nc : 0, 0.0);
+        by_field = by_volume;
+        for (std::size_t i = 0; i < bucket_.size(); ++i) {
+            const int b = bucket_[i];
+            const int k = i < restoration_.component.size() ? restoration_.component[i] : -1;
+            if (b < 0 && k < 0) continue;
+            for (int c = 0; c < 3; ++c) {
+                if (slot[c] < 0) continue;
                 const double v = normals(i, c) * u.current(i, c);
-                by_volume[k] += restoration_.area[i] * v;
-                by_field[k] += restoration_.field[i] * v;
+                if (b >= 0) columns_(b, slot[c]) += sign_[i] * static_cast<float>(v);
+                if (k < 0) continue;
+                by_volume[c][k] += restoration_.area[i] * v;
+                by_field[c][k] += restoration_.field[i] * v;
             }
-            volume_part_.push_back(std::move(by_volume));
-            field_part_.push_back(std::move(by_field));
-            index_[c].push_back(static_cast<int>(used_++));
+        }
+        for (int c = 0; c < 3; ++c) {
+            if (slot[c] < 0) continue;
+            volume_part_.push_back(std::move(by_volume[c]));
+            field_part_.push_back(std::move(by_field[c]));
         }
     }
     // |sum_c S_c y_c(lambda)|^2 for every lambda of `grid` from `first` to `last` (exclusive),
