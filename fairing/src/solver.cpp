@@ -4,8 +4,11 @@
 
 #include "complex_factor.h"
 #include "kernels.h"
+#include "multigrid.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <array>
 #include <cmath>
 #include <memory>
@@ -383,6 +386,63 @@ int factored_fcg(const LinearSystem& system, FactoredPreconditioner& preconditio
     return done;
 }
 
+// Iterations of CG preconditioned by one multigrid V-cycle (multigrid.h; first-order systems),
+// from x with r = b - A x. Same contract as jacobi_cg; z is work space.
+int multigrid_cg(const LinearSystem& system, detail::Multigrid& mg, Positions& x, Positions& r,
+                 Positions& p, Positions& q, Positions& z, const Column3& goal, ResidualNorm norm,
+                 int done, int cap, std::array<bool, 3>& active, Column3& rn,
+                 const std::function<void(const Column3&)>& after_iteration) {
+    const int n = system.op->size();
+    const int threads = system.op->threads;
+    const std::vector<char>& free = system.free;
+    const char* f = free.data();
+    // q is free between the update and the next product: the cycle's work space.
+    const auto precondition = [&mg, &q](const Positions& from, Positions& to) {
+        const std::array<double, 6> dots = mg.apply(from.data(), to.data(), q.data());
+        return Column3{dots[0], dots[1], dots[2]};
+    };
+    Column3 rz = precondition(r, p);  // p = z = B^-1 r
+    while (any(active) && done < cap) {
+        ++done;
+        const Column3 pq = system.apply_dot(p, q, z);
+        double alpha[3] = {0, 0, 0};
+        for (int c = 0; c < 3; ++c)
+            if (active[c]) {
+                alpha[c] = rz[c] / pq[c];
+                check_finite(alpha[c], done);
+            }
+        rn = update_iterate(system, x, r, p, q, alpha, norm, nullptr).residual;
+        for (int c = 0; c < 3; ++c) {
+            check_finite(rn[c], done);
+            if (active[c] && rn[c] <= goal[c]) active[c] = false;
+        }
+        if (after_iteration) after_iteration(rn);
+        if (!any(active)) break;
+        const Column3 rz_new = precondition(r, z);
+        double beta[3] = {0, 0, 0};
+        double keep[3] = {0, 0, 0};
+        for (int c = 0; c < 3; ++c) {
+            if (active[c]) {
+                beta[c] = rz_new[c] / rz[c];
+                check_finite(beta[c], done);
+                rz[c] = rz_new[c];
+            } else {
+                keep[c] = 1;
+            }
+        }
+        double* pw = p.data();
+        const double* zs = z.data();
+        detail::for_each_row(n, threads, [=](int i) {
+            if (!f[i]) return;
+            for (int c = 0; c < 3; ++c) {
+                double& pc = pw[3 * i + c];
+                pc = keep[c] != 0 ? pc : zs[3 * i + c] + beta[c] * pc;
+            }
+        });
+    }
+    return done;
+}
+
 // b = D x_old, and the norms that scale the stopping rule. The right-hand side actually solved
 // on the free rows includes the fixed values' coupling, b_f - A_fc x_c; its norm (or b's,
 // whichever is larger) is the scale. Without fixed rows the two are the same and the product is
@@ -444,6 +504,39 @@ private:
     std::function<void(const Column3&)> callback_;
 };
 
+// TEMPORARY (measurement): FAIRING_MG_REAL=1 preconditions the complex system by the real
+// V-cycle of M - s K on both parts.
+detail::Multigrid::Kind multigrid_kind() {
+    const char* v = std::getenv("FAIRING_MG_REAL");
+    return v && v[0] == '1' ? detail::Multigrid::Kind::RealOnComplex
+                            : detail::Multigrid::Kind::Complex;
+}
+
+// The stiffness of the system seen by its diagonal: the mean over the free rows of
+// a (-K_ii) / D_i, a = lambda_dt (first order) or sqrt(lambda_dt) (the complex factor of L^2).
+// Jacobi's iterations grow as its square root.
+double stiffness(const LinearSystem& system) {
+    const SparseOperator& op = *system.op;
+    const double a = system.order == 1 ? system.lambda_dt : std::sqrt(system.lambda_dt);
+    const char* f = system.free.data();
+    const double* d = system.diagonal.data();
+    const std::array<double, 2> sums = detail::blocked_sum<2>(op.size(), op.threads, [&](int i, double* s) {
+        if (!f[i] || !(d[i] > 0)) return;
+        s[0] += a * -op.diagonal(i) / d[i];
+        s[1] += 1;
+    });
+    return sums[1] > 0 ? sums[0] / sums[1] : 0.0;
+}
+
+// Whether the multigrid preconditioner is used: asked for, or chosen by Automatic.
+bool use_multigrid(const LinearSystem& system, Preconditioner preconditioner) {
+    if (std::getenv("FAIRING_MG_DEBUG"))
+        std::fprintf(stderr, "stiffness %.4g n %d\n", stiffness(system), system.op->size());
+    if (preconditioner == Preconditioner::Multigrid) return true;
+    if (preconditioner != Preconditioner::Automatic) return false;
+    return false;
+}
+
 // CG's recursively updated residual drifts from the true one on ill-conditioned systems (the
 // L^2 forms), so convergence is confirmed on the true residual, restarting from the current
 // iterate when it disagrees, at most this many times.
@@ -452,10 +545,19 @@ constexpr int kMaxRestarts = 8;
 // Automatic, L^2 without soft weights (complex_factor.h): corrections by the complex solve until
 // the true L^2 residual meets the goal. Needs only b besides the complex solver's vectors.
 SolveStats solve_complex(const LinearSystem& system, Positions& x, const Positions& b,
-                         const Column3& scale, const Column3& goal, const SolveSettings& settings) {
+                         const Column3& scale, const Column3& goal, const SolveSettings& settings,
+                         bool multigrid) {
     SolveStats stats;
     stats.complex_factor = true;
     detail::ComplexFactorSolver solver(system);
+    std::unique_ptr<detail::Multigrid> cycle;
+    if (multigrid) {
+        cycle = std::make_unique<detail::Multigrid>(*system.op, system.diagonal, system.free,
+                                                    std::sqrt(system.lambda_dt),
+                                                    multigrid_kind());
+        solver.use_preconditioner(cycle.get());
+        stats.multigrid = true;
+    }
     Progress progress(settings, goal);
     std::array<bool, 3> active{false, false, false};
     Column3 rn{0, 0, 0};
@@ -513,16 +615,29 @@ SolveStats solve_real(const LinearSystem& system, Positions& x, const Positions&
     Positions r(n, 3), p(n, 3), q(n, 3), scratch(system.order == 2 ? n : 0, 3);
     SolveStats stats;
     std::unique_ptr<FactoredPreconditioner> factored;
+    std::unique_ptr<detail::Multigrid> multigrid;
     Positions z;
     const auto use_factored = [&] {
         factored = std::make_unique<FactoredPreconditioner>(system, kInnerCap);
         z.resize(n, 3);
         stats.factored = true;
     };
-    bool trial_pending = system.order == 2 && settings.preconditioner == Preconditioner::Automatic;
+    // L^2 with soft weights has no multigrid path (the complex factor needs D = M): Multigrid
+    // then behaves as Automatic.
+    bool trial_pending = system.order == 2 &&
+                         (settings.preconditioner == Preconditioner::Automatic ||
+                          settings.preconditioner == Preconditioner::Multigrid);
     if (system.order == 2 && settings.preconditioner == Preconditioner::Factored) use_factored();
+    if (system.order == 1 && use_multigrid(system, settings.preconditioner)) {
+        multigrid = std::make_unique<detail::Multigrid>(*system.op, system.diagonal, system.free,
+                                                        system.lambda_dt,
+                                                        detail::Multigrid::Kind::Real);
+        z.resize(n, 3);
+        stats.multigrid = true;
+    }
     // Jacobi's diagonal (for L^2 a sweep over the 2-ring) only when Jacobi iterations may run.
-    const std::vector<double> inverse = factored ? std::vector<double>() : inverse_jacobi(system);
+    const std::vector<double> inverse =
+        factored || multigrid ? std::vector<double>() : inverse_jacobi(system);
     // The iteration cap bounds the work too: an inner iteration is one product with K, an
     // iteration of the L^2 system two, so the inner solves get twice the cap.
     const int inner_cap = 2 * settings.max_iterations;
@@ -541,6 +656,12 @@ SolveStats solve_real(const LinearSystem& system, Positions& x, const Positions&
         if (!any(active) || restart == kMaxRestarts || stats.iterations >= settings.max_iterations ||
             stats.inner_iterations >= inner_cap)
             break;
+        if (multigrid) {
+            stats.iterations = multigrid_cg(system, *multigrid, x, r, p, q, z, goal, settings.norm,
+                                            stats.iterations, settings.max_iterations, active, rn,
+                                            after_iteration);
+            continue;
+        }
         if (factored) {
             stats.iterations = factored_fcg(system, *factored, x, r, p, q, z, scratch, goal,
                                             settings.norm, stats.iterations,
@@ -580,8 +701,11 @@ SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& 
     const Column3 scale = right_hand_side(system, x, settings.norm, b);
     Column3 goal;
     for (int c = 0; c < 3; ++c) goal[c] = scale[c] > 0 ? settings.tolerance * scale[c] : 0.0;
-    if (settings.preconditioner == Preconditioner::Automatic && detail::complex_factor_applies(system))
-        return solve_complex(system, x, b, scale, goal, settings);
+    const bool complex = settings.preconditioner == Preconditioner::Automatic ||
+                         settings.preconditioner == Preconditioner::Multigrid;
+    if (complex && detail::complex_factor_applies(system))
+        return solve_complex(system, x, b, scale, goal, settings,
+                             use_multigrid(system, settings.preconditioner));
     return solve_real(system, x, b, scale, goal, settings);
 }
 

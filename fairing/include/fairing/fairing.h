@@ -67,6 +67,10 @@ enum class Preconditioner {
                 // L^2 steps strong enough to profit, Jacobi otherwise
     Jacobi,     // the diagonal of the system: cheap, iterations grow as sqrt(lambda_dt)
     Factored,   // L^2 only: two first-order solves per iteration, iterations grow as lambda_dt^1/4
+    Multigrid,  // smoothed-aggregation multigrid V-cycle (src/multigrid.h): first order, and L^2
+                // without soft weights (complex solve); L^2 with soft weights falls back to
+                // Automatic's choice. Set-up costs about a few iterations; iterations stay
+                // nearly flat as lambda_dt grows
 };
 
 // A double or nothing: std::optional<double> for the C++14 callers of this header (MeshLab

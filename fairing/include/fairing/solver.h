@@ -64,6 +64,7 @@ struct SolveStats {
     int inner_iterations = 0;  // Factored: the first-order iterations inside B^-1
     bool factored = false;
     bool complex_factor = false;  // solved as Re (M + i sqrt(lambda_dt) K)^-1 (complex_factor.h)
+    bool multigrid = false;  // preconditioned by the multigrid V-cycle (src/multigrid.h)
     double residual = 0;  // max over columns of ||A x - b|| / ||b|| on the free rows
     bool converged = false;
 };
