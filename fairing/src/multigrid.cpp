@@ -7,9 +7,6 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
-#include <chrono>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 #include <utility>
 
@@ -590,13 +587,7 @@ void Multigrid::Impl::cycle(int l, const double* b, double* x, double* dots) {
 Multigrid::Multigrid(const SparseOperator& op, const std::vector<double>& diagonal,
                      const std::vector<char>& free, double a, Kind kind)
     : impl_(std::make_unique<Impl>(op, diagonal, free, a, kind)) {
-    const auto t0 = std::chrono::steady_clock::now();
     impl_->build();
-    if (std::getenv("FAIRING_MG_DEBUG")) {  // TEMPORARY
-        std::fprintf(stderr, "mg setup %.3f s, levels:", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-        for (auto& l : impl_->levels) std::fprintf(stderr, " %d(%zu nnz, P %zu)", l.n, l.col.size(), l.p.col.size());
-        std::fprintf(stderr, " bytes/row %.1f\n", double(bytes()) / op.size());
-    }
 }
 
 Multigrid::~Multigrid() = default;
@@ -607,7 +598,6 @@ std::array<double, 6> Multigrid::apply(const double* r, double* z, double* work)
     switch (impl_->kind) {
     case Kind::Real: impl_->cycle<3, false>(0, r, z, dots.data()); break;
     case Kind::Complex: impl_->cycle<6, true>(0, r, z, dots.data()); break;
-    case Kind::RealOnComplex: impl_->cycle<6, false>(0, r, z, dots.data()); break;
     }
     if (impl_->levels.size() > 1) return dots;
     // Level 0 alone (no free row) took the coarsest branch, which sums nothing.

@@ -9,8 +9,12 @@
 //   Kind::Real           B = D - a K_ff        (the first-order system, a = lambda_dt), SPD
 //   Kind::Complex        B = D + i a K_ff      (the L^2 step's complex factor, a = sqrt(lambda_dt),
 //                                               complex_factor.h), complex symmetric
-//   Kind::RealOnComplex  B = D - a K_ff applied to the real and imaginary parts alike: a real
-//                        preconditioner for the complex system (kept for the measurements)
+//
+// The real V-cycle of D - a K_ff applied to the real and imaginary parts alike also
+// preconditions the complex system (its spectrum then lies on the segment [1, i]), but worse:
+// measured on the 1.2 M-face bunny (curvature L^2, 1 thread) 47 / 62 COCG iterations and
+// 6.12 / 7.95 s at time steps 22.5 / 360 against the complex hierarchy's 31 / 44 and
+// 4.75 / 6.36 s (bench/results/issue12/preconditioners.md).
 //
 // Hierarchy: built once from the real SPD matrix A = D - a K_ff. Aggregates of strongly
 // coupled rows (greedy, in row order: the vertex order is a space-filling curve, so aggregates
@@ -44,7 +48,7 @@ namespace detail {
 
 class Multigrid {
 public:
-    enum class Kind { Real, Complex, RealOnComplex };
+    enum class Kind { Real, Complex };
 
     // diagonal: D_i (> 0 on the free rows); free: nonzero = unknown; a > 0. op, diagonal and
     // free must outlive the Multigrid.
@@ -55,9 +59,9 @@ public:
     Multigrid& operator=(const Multigrid&) = delete;
 
     // z ~ B^-1 r by one V-cycle. r and z are row-major with width() doubles per row: 3 for
-    // Real (x, y, z), 6 otherwise (re x, y, z, im x, y, z). z is zero on the fixed rows; r
+    // Real (x, y, z), 6 for Complex (re x, y, z, im x, y, z). z is zero on the fixed rows; r
     // there is ignored. Returns the unconjugated products r^T z per column, summed in fixed
-    // blocks: Real in [0..2]; otherwise re in [0..2], im in [3..5]. work: width() doubles per
+    // blocks: Real in [0..2]; Complex re in [0..2], im in [3..5]. work: width() doubles per
     // row of scratch (the solvers lend a vector that is free at that point, which saves one).
     std::array<double, 6> apply(const double* r, double* z, double* work);
 

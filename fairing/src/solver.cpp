@@ -7,8 +7,6 @@
 #include "multigrid.h"
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 #include <array>
 #include <cmath>
 #include <memory>
@@ -504,37 +502,51 @@ private:
     std::function<void(const Column3&)> callback_;
 };
 
-// TEMPORARY (measurement): FAIRING_MG_REAL=1 preconditions the complex system by the real
-// V-cycle of M - s K on both parts.
-detail::Multigrid::Kind multigrid_kind() {
-    const char* v = std::getenv("FAIRING_MG_REAL");
-    return v && v[0] == '1' ? detail::Multigrid::Kind::RealOnComplex
-                            : detail::Multigrid::Kind::Complex;
-}
-
-// The stiffness of the system seen by its diagonal: the mean over the free rows of
-// a (-K_ii) / D_i, a = lambda_dt (first order) or sqrt(lambda_dt) (the complex factor of L^2).
-// Jacobi's iterations grow as its square root.
-double stiffness(const LinearSystem& system) {
+// The stiffness of the system as its diagonal sees it: the mean over the free rows of
+// a (-K_ii) / D_i, a = lambda_dt (first order) or sqrt(lambda_dt) (the complex factor of L^2),
+// and the number of those rows. Jacobi's iterations grow as the square root of the first.
+std::array<double, 2> stiffness(const LinearSystem& system) {
     const SparseOperator& op = *system.op;
     const double a = system.order == 1 ? system.lambda_dt : std::sqrt(system.lambda_dt);
     const char* f = system.free.data();
     const double* d = system.diagonal.data();
-    const std::array<double, 2> sums = detail::blocked_sum<2>(op.size(), op.threads, [&](int i, double* s) {
-        if (!f[i] || !(d[i] > 0)) return;
-        s[0] += a * -op.diagonal(i) / d[i];
-        s[1] += 1;
-    });
-    return sums[1] > 0 ? sums[0] / sums[1] : 0.0;
+    const std::array<double, 2> sums =
+        detail::blocked_sum<2>(op.size(), op.threads, [&](int i, double* s) {
+            if (!f[i] || !(d[i] > 0)) return;
+            s[0] += a * -op.diagonal(i) / d[i];
+            s[1] += 1;
+        });
+    return {sums[1] > 0 ? sums[0] / sums[1] : 0.0, sums[1]};
 }
+
+// Automatic's choice of the multigrid V-cycle (multigrid.h). A cycle costs about three products
+// with K (two on the finest level, the coarse levels about one) against one for a Jacobi
+// iteration, and its set-up some ten Jacobi iterations, so it pays only where Jacobi needs
+// several times more iterations than it does: strong steps. Measured in one run (1 thread, CPU
+// seconds of fair(), bench/results/issue12/preconditioners.md, 2026-11-25), 1.2 M-face bunny
+// then 1 M-face torus, stiffness (above) in brackets, Jacobi / multigrid:
+//   first order: curvature 4.74 [5.6, 6.2] 1.19 / 1.75 s, 1.11 / 1.28 s; umbrella 3.16 [3.2]
+//     and scale-dependent 1.58 [5.0, 3.9] Jacobi 1.2-1.8x faster; curvature 19 [22.5, 25]
+//     1.99 / 2.04 s, 1.76 / 1.59 s; curvature 76 [90, 100] 3.25 / 2.18 s, 2.75 / 2.09 s.
+//   L^2 (complex Jacobi / complex multigrid): curvature 22.5 [5.6, 6.2] 5.28 / 4.75 s,
+//     5.43 / 5.70 s; umbrella 10 [3.2] Jacobi 1.7-1.9x faster; scale-dependent 2.5 [5.0, 3.9]
+//     3.90 / 3.29 s, 1.43 / 1.97 s; curvature 90 [11.3, 12.5] 8.02 / 5.72 s, 6.95 / 7.79 s;
+//     curvature 360 [22.5, 25] 10.83 / 6.36 s, 8.03 / 7.00 s.
+// So: first order from stiffness 20, L^2 from 8 (the defaults, at 3-6, stay on the Jacobi paths,
+// whose memory is lower: the hierarchy and one more vector cost 110-180 bytes per vertex; the
+// torus' L^2 at 90 is the one measured loss, 12 %), and only with at least kMultigridRows free
+// vertices (not measured below; a small solve is fast anyway).
+constexpr double kMultigridFirstOrder = 20;
+constexpr double kMultigridComplex = 8;
+constexpr double kMultigridRows = 50000;
 
 // Whether the multigrid preconditioner is used: asked for, or chosen by Automatic.
 bool use_multigrid(const LinearSystem& system, Preconditioner preconditioner) {
-    if (std::getenv("FAIRING_MG_DEBUG"))
-        std::fprintf(stderr, "stiffness %.4g n %d\n", stiffness(system), system.op->size());
     if (preconditioner == Preconditioner::Multigrid) return true;
     if (preconditioner != Preconditioner::Automatic) return false;
-    return false;
+    const std::array<double, 2> s = stiffness(system);
+    return s[1] >= kMultigridRows &&
+           s[0] >= (system.order == 1 ? kMultigridFirstOrder : kMultigridComplex);
 }
 
 // CG's recursively updated residual drifts from the true one on ill-conditioned systems (the
@@ -554,7 +566,7 @@ SolveStats solve_complex(const LinearSystem& system, Positions& x, const Positio
     if (multigrid) {
         cycle = std::make_unique<detail::Multigrid>(*system.op, system.diagonal, system.free,
                                                     std::sqrt(system.lambda_dt),
-                                                    multigrid_kind());
+                                                    detail::Multigrid::Kind::Complex);
         solver.use_preconditioner(cycle.get());
         stats.multigrid = true;
     }
