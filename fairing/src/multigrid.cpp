@@ -179,6 +179,41 @@ double last_weight(const Split& m, const std::vector<double>& adiag, double a) {
     return rho > 0 ? kSmootherWeight / rho : 0.0;
 }
 
+// R B P in both parts (mass, stiffness), coarse row by coarse row (Gustavson, dense
+// accumulators): each coarse row sums its entries in a fixed order.
+template <class Row>
+Split galerkin(int nc, const Csr& r, const Csr& p, const Row& row) {
+    Split coarse;
+    std::vector<double> acc_m(static_cast<std::size_t>(nc), 0.0), acc_s(acc_m);
+    std::vector<int> mark(static_cast<std::size_t>(nc), -1), touched;
+    for (int c = 0; c < nc; ++c) {
+        touched.clear();
+        for (int e = r.start[c]; e < r.start[c + 1]; ++e) {
+            const int i = r.col[e];
+            const double ri = r.val[e];  // the float entry, as the cycle applies it
+            row(i, [&](int k, double m, double s) {
+                for (int f = p.start[k]; f < p.start[k + 1]; ++f) {
+                    const int b = p.col[f];
+                    if (mark[b] != c) {
+                        mark[b] = c;
+                        touched.push_back(b);
+                        acc_m[b] = acc_s[b] = 0;
+                    }
+                    acc_m[b] += ri * m * p.val[f];
+                    acc_s[b] += ri * s * p.val[f];
+                }
+            });
+        }
+        for (int b : touched) {
+            coarse.col.push_back(b);
+            coarse.mass.push_back(acc_m[b]);
+            coarse.stiff.push_back(acc_s[b]);
+        }
+        coarse.start.push_back(static_cast<int>(coarse.col.size()));
+    }
+    return coarse;
+}
+
 }  // namespace
 
 // Aggregates, the smoothed prolongator (into fine.p, fine.r) and the Galerkin coarse matrix
@@ -236,35 +271,7 @@ Split Multigrid::Impl::coarsen(int n, const Row& row, const std::vector<double>&
     p.col.shrink_to_fit();
     p.val.shrink_to_fit();
     fine.r = transpose(p, nc);
-    // Galerkin product, coarse row by coarse row (Gustavson, dense accumulators).
-    Split coarse;
-    std::vector<double> acc_m(static_cast<std::size_t>(nc), 0.0), acc_s(acc_m);
-    std::vector<int> mark(static_cast<std::size_t>(nc), -1), touched;
-    for (int c = 0; c < nc; ++c) {
-        touched.clear();
-        for (int e = fine.r.start[c]; e < fine.r.start[c + 1]; ++e) {
-            const int i = fine.r.col[e];
-            const double ri = fine.r.val[e];  // the float entry, as the cycle applies it
-            row(i, [&](int k, double m, double s) {
-                for (int f = p.start[k]; f < p.start[k + 1]; ++f) {
-                    const int b = p.col[f];
-                    if (mark[b] != c) {
-                        mark[b] = c;
-                        touched.push_back(b);
-                        acc_m[b] = acc_s[b] = 0;
-                    }
-                    acc_m[b] += ri * m * p.val[f];
-                    acc_s[b] += ri * s * p.val[f];
-                }
-            });
-        }
-        for (int b : touched) {
-            coarse.col.push_back(b);
-            coarse.mass.push_back(acc_m[b]);
-            coarse.stiff.push_back(acc_s[b]);
-        }
-        coarse.start.push_back(static_cast<int>(coarse.col.size()));
-    }
+    Split coarse = galerkin(nc, fine.r, p, row);
     coarse.col.shrink_to_fit();
     coarse.mass.shrink_to_fit();
     coarse.stiff.shrink_to_fit();
