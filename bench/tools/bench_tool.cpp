@@ -119,7 +119,7 @@ int main(int argc, char** argv) {
             o.order = std::atoi(argv[5]);
             o.time_step = std::atof(argv[6]);
             o.steps = argc > 7 ? std::atoi(argv[7]) : 1;
-            // Optional after STEPS: threads=N, preconditioner=auto|jacobi|factored|multigrid, freeze=0|1.
+            // Optional after STEPS: threads=N, preconditioner=auto|jacobi|factored, freeze=0|1.
             for (int k = 8; k < argc; ++k) {
                 const std::string kv = argv[k];
                 const std::size_t eq = kv.find('=');
