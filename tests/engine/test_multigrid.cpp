@@ -261,3 +261,29 @@ TEST(Multigrid, FairWithMultigridMatchesJacobiThroughThePublicEntryPoint) {
         EXPECT_LT(mg.total_iterations, jacobi.total_iterations);
     }
 }
+
+TEST(Multigrid, TinyAndEmptyHierarchies) {
+    // All but a few vertices fixed: the hierarchy is one aggregation level and a tiny dense
+    // solve (or nothing at all); the step still equals the dense one, and with no free vertex
+    // nothing moves.
+    const Case c = make(meshes::radial_noise(meshes::icosphere(3), 0.05, 23),
+                        Operator::CurvatureFlow);
+    const int n = c.op.size();
+    for (int stride : {1, 40, 200}) {
+        SCOPED_TRACE(testing::Message() << "free every " << stride << "th vertex");
+        std::vector<char> free(n, 0);
+        for (int i = 0; i < n; i += stride) free[i] = stride == 1 ? 0 : 1;
+        for (int order : {1, 2}) {
+            const double lambda_dt = lambda(c, Operator::CurvatureFlow, order, 20);
+            const Solved mg =
+                solve(c, system(c, order, lambda_dt, free), Preconditioner::Multigrid, 1e-12);
+            ASSERT_TRUE(mg.stats.converged);
+            const Positions ref =
+                meshes::dense_implicit_step(c.op, c.mesh.positions, lambda_dt, order, {}, free);
+            EXPECT_LT(meshes::max_row_distance(mg.x, ref), 1e-9 * meshes::bbox_diagonal(ref));
+            if (stride == 1) {
+                EXPECT_EQ(0, meshes::max_row_distance(mg.x, c.mesh.positions));
+            }
+        }
+    }
+}
