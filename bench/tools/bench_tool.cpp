@@ -130,6 +130,7 @@ int main(int argc, char** argv) {
                 else if (key == "preconditioner")
                     o.preconditioner = value == "jacobi" ? fairing::Preconditioner::Jacobi
                                      : value == "factored" ? fairing::Preconditioner::Factored
+                                     : value == "multigrid" ? fairing::Preconditioner::Multigrid
                                                            : fairing::Preconditioner::Automatic;
                 else return usage();
             }

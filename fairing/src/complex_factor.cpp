@@ -3,6 +3,7 @@
 #include "complex_factor.h"
 
 #include "kernels.h"
+#include "multigrid.h"
 
 #include <algorithm>
 #include <cmath>
@@ -142,24 +143,38 @@ std::array<double, 3> ComplexFactorSolver::l2_residual_norms(ResidualNorm norm) 
     return {std::sqrt(sums[0]), std::sqrt(sums[1]), std::sqrt(sums[2])};
 }
 
+void ComplexFactorSolver::use_preconditioner(Multigrid* preconditioner) {
+    preconditioner_ = preconditioner;
+    u_.resize(system_.op->size(), 6);
+    std::vector<double>().swap(inverse_);
+}
+
+std::array<double, 6> ComplexFactorSolver::precondition(bool first) {
+    // q is free once r is updated (the next product rewrites it): the cycle's work space.
+    const std::array<double, 6> ru = preconditioner_->apply(r_.data(), u_.data(), q_.data());
+    if (first) p_ = u_;
+    return ru;
+}
+
 std::array<double, 9> ComplexFactorSolver::update(const double* alpha, bool first,
                                                   ResidualNorm norm, Positions* x) {
     const int n = system_.op->size();
     const char* f = system_.free.data();
-    const double* inv = inverse_.data();
+    // With a preconditioner, u and r^T u come from precondition() once r is complete.
+    const double* inv = preconditioner_ ? nullptr : inverse_.data();
     double* xs = x ? x->data() : nullptr;
     double* rs = r_.data();
     double* ps = p_.data();
     const double* qs = q_.data();
     const bool l2 = norm == ResidualNorm::L2;
-    return blocked_reduce<9>(
+    std::array<double, 9> sums = blocked_reduce<9>(
         n, system_.op->threads,
         [=](int i, double* a) {
             if (!f[i]) return;
             double* ri = rs + 6 * i;
             double* pi = ps + 6 * i;
             const double* qi = qs + 6 * i;
-            const Cx w{inv[2 * i], inv[2 * i + 1]};
+            const Cx w = inv ? Cx{inv[2 * i], inv[2 * i + 1]} : Cx{};
             for (int c = 0; c < 3; ++c) {
                 if (alpha) {
                     const Cx ac{alpha[2 * c], alpha[2 * c + 1]};
@@ -169,10 +184,11 @@ std::array<double, 9> ComplexFactorSolver::update(const double* alpha, bool firs
                     ri[3 + c] -= aq.im;
                 }
                 const Cx rc{ri[c], ri[3 + c]};
-                const Cx u = mul(w, rc);
-                const Cx ru = mul(rc, u);
                 const double m2 = rc.re * rc.re + rc.im * rc.im;
                 a[c] = l2 ? a[c] + m2 : std::max(a[c], std::sqrt(m2));
+                if (!inv) continue;
+                const Cx u = mul(w, rc);
+                const Cx ru = mul(rc, u);
                 a[3 + c] += ru.re;
                 a[6 + c] += ru.im;
                 if (first) {
@@ -186,21 +202,27 @@ std::array<double, 9> ComplexFactorSolver::update(const double* alpha, bool firs
                 total[c] = l2 ? total[c] + part[c] : std::max(total[c], part[c]);
             for (int k = 3; k < 9; ++k) total[k] += part[k];
         });
+    if (preconditioner_) {
+        const std::array<double, 6> ru = precondition(first);
+        for (int k = 0; k < 6; ++k) sums[3 + k] = ru[k];
+    }
+    return sums;
 }
 
 void ComplexFactorSolver::next_direction(const double* beta) {
     const char* f = system_.free.data();
     const double* inv = inverse_.data();
     const double* rs = r_.data();
+    const double* us = preconditioner_ ? u_.data() : nullptr;
     double* ps = p_.data();
     for_each_row(system_.op->size(), system_.op->threads, [=](int i) {
         if (!f[i]) return;
-        const Cx w{inv[2 * i], inv[2 * i + 1]};
+        const Cx w = us ? Cx{} : Cx{inv[2 * i], inv[2 * i + 1]};
         double* pi = ps + 6 * i;
         const double* ri = rs + 6 * i;
         for (int c = 0; c < 3; ++c) {
             if (std::isnan(beta[2 * c])) continue;  // column done: p stays
-            const Cx u = mul(w, {ri[c], ri[3 + c]});
+            const Cx u = us ? Cx{us[6 * i + c], us[6 * i + 3 + c]} : mul(w, {ri[c], ri[3 + c]});
             const Cx bp = mul({beta[2 * c], beta[2 * c + 1]}, {pi[c], pi[3 + c]});
             pi[c] = u.re + bp.re;
             pi[3 + c] = u.im + bp.im;

@@ -36,12 +36,18 @@
 namespace fairing {
 namespace detail {
 
+class Multigrid;
+
 // True when the L^2 system factors as above: order 2 and D = M on every free row.
 bool complex_factor_applies(const LinearSystem& system);
 
 class ComplexFactorSolver {
 public:
     explicit ComplexFactorSolver(const LinearSystem& system);
+
+    // Precondition by B (width 6, complex symmetric: multigrid.h) instead of complex Jacobi;
+    // B must outlive the solver. Costs one more complex vector.
+    void use_preconditioner(Multigrid* preconditioner);
 
     // g = b - A x, the residual of the real L^2 system on the free rows (zero on the fixed
     // ones), kept as the complex solve's right-hand side; returns its norms per column.
@@ -64,7 +70,11 @@ private:
     // r -= alpha q; then u = J^-1 r, and per column the residual norm (squares or maxima of
     // |r|) in [0..2] and r^T u in [3..8] (re, im). first: p = u (the first direction).
     std::array<double, 9> update(const double* alpha, bool first, ResidualNorm norm, Positions* x);
-    // p = J^-1 r + beta p on the columns whose beta (re, im per column) is not NaN.
+    // With a preconditioner B: u = B^-1 r, and r^T u per column (re in [0..2], im in [3..5]);
+    // first: p = u.
+    std::array<double, 6> precondition(bool first);
+    // p = J^-1 r + beta p (or u + beta p) on the columns whose beta (re, im per column) is not
+    // NaN.
     void next_direction(const double* beta);
     // Norms of the L^2 residual g - A (x + Re z) per column, from r_c alone (uses q as scratch).
     std::array<double, 3> l2_residual_norms(ResidualNorm norm);
@@ -73,6 +83,8 @@ private:
     double s_ = 0;
     std::vector<double> inverse_;  // 1 / (M_i + i s K_ii): re, im per row; 0 on fixed rows
     Complex6 r_, p_, q_;
+    Multigrid* preconditioner_ = nullptr;
+    Complex6 u_;  // B^-1 r with a preconditioner
 };
 
 }  // namespace detail

@@ -4,6 +4,7 @@
 
 #include "complex_factor.h"
 #include "kernels.h"
+#include "multigrid.h"
 
 #include <algorithm>
 #include <array>
@@ -383,6 +384,63 @@ int factored_fcg(const LinearSystem& system, FactoredPreconditioner& preconditio
     return done;
 }
 
+// Iterations of CG preconditioned by one multigrid V-cycle (multigrid.h; first-order systems),
+// from x with r = b - A x. Same contract as jacobi_cg; z is work space.
+int multigrid_cg(const LinearSystem& system, detail::Multigrid& mg, Positions& x, Positions& r,
+                 Positions& p, Positions& q, Positions& z, const Column3& goal, ResidualNorm norm,
+                 int done, int cap, std::array<bool, 3>& active, Column3& rn,
+                 const std::function<void(const Column3&)>& after_iteration) {
+    const int n = system.op->size();
+    const int threads = system.op->threads;
+    const std::vector<char>& free = system.free;
+    const char* f = free.data();
+    // q is free between the update and the next product: the cycle's work space.
+    const auto precondition = [&mg, &q](const Positions& from, Positions& to) {
+        const std::array<double, 6> dots = mg.apply(from.data(), to.data(), q.data());
+        return Column3{dots[0], dots[1], dots[2]};
+    };
+    Column3 rz = precondition(r, p);  // p = z = B^-1 r
+    while (any(active) && done < cap) {
+        ++done;
+        const Column3 pq = system.apply_dot(p, q, z);
+        double alpha[3] = {0, 0, 0};
+        for (int c = 0; c < 3; ++c)
+            if (active[c]) {
+                alpha[c] = rz[c] / pq[c];
+                check_finite(alpha[c], done);
+            }
+        rn = update_iterate(system, x, r, p, q, alpha, norm, nullptr).residual;
+        for (int c = 0; c < 3; ++c) {
+            check_finite(rn[c], done);
+            if (active[c] && rn[c] <= goal[c]) active[c] = false;
+        }
+        if (after_iteration) after_iteration(rn);
+        if (!any(active)) break;
+        const Column3 rz_new = precondition(r, z);
+        double beta[3] = {0, 0, 0};
+        double keep[3] = {0, 0, 0};
+        for (int c = 0; c < 3; ++c) {
+            if (active[c]) {
+                beta[c] = rz_new[c] / rz[c];
+                check_finite(beta[c], done);
+                rz[c] = rz_new[c];
+            } else {
+                keep[c] = 1;
+            }
+        }
+        double* pw = p.data();
+        const double* zs = z.data();
+        detail::for_each_row(n, threads, [=](int i) {
+            if (!f[i]) return;
+            for (int c = 0; c < 3; ++c) {
+                double& pc = pw[3 * i + c];
+                pc = keep[c] != 0 ? pc : zs[3 * i + c] + beta[c] * pc;
+            }
+        });
+    }
+    return done;
+}
+
 // b = D x_old, and the norms that scale the stopping rule. The right-hand side actually solved
 // on the free rows includes the fixed values' coupling, b_f - A_fc x_c; its norm (or b's,
 // whichever is larger) is the scale. Without fixed rows the two are the same and the product is
@@ -444,6 +502,53 @@ private:
     std::function<void(const Column3&)> callback_;
 };
 
+// The stiffness of the system as its diagonal sees it: the mean over the free rows of
+// a (-K_ii) / D_i, a = lambda_dt (first order) or sqrt(lambda_dt) (the complex factor of L^2),
+// and the number of those rows. Jacobi's iterations grow as the square root of the first.
+std::array<double, 2> stiffness(const LinearSystem& system) {
+    const SparseOperator& op = *system.op;
+    const double a = system.order == 1 ? system.lambda_dt : std::sqrt(system.lambda_dt);
+    const char* f = system.free.data();
+    const double* d = system.diagonal.data();
+    const std::array<double, 2> sums =
+        detail::blocked_sum<2>(op.size(), op.threads, [&](int i, double* s) {
+            if (!f[i] || !(d[i] > 0)) return;
+            s[0] += a * -op.diagonal(i) / d[i];
+            s[1] += 1;
+        });
+    return {sums[1] > 0 ? sums[0] / sums[1] : 0.0, sums[1]};
+}
+
+// Automatic's choice of the multigrid V-cycle (multigrid.h). A cycle costs about three products
+// with K (two on the finest level, the coarse levels about one) against one for a Jacobi
+// iteration, and its set-up some ten Jacobi iterations, so it pays only where Jacobi needs
+// several times more iterations than it does: strong steps. Measured in one run (1 thread, CPU
+// seconds of fair(), bench/results/issue12/preconditioners.md, 2026-11-25), 1.2 M-face bunny
+// then 1 M-face torus, stiffness (above) in brackets, Jacobi / multigrid:
+//   first order: curvature 4.74 [5.6, 6.2] 1.19 / 1.75 s, 1.11 / 1.28 s; umbrella 3.16 [3.2]
+//     and scale-dependent 1.58 [5.0, 3.9] Jacobi 1.2-1.8x faster; curvature 19 [22.5, 25]
+//     1.99 / 2.04 s, 1.76 / 1.59 s; curvature 76 [90, 100] 3.25 / 2.18 s, 2.75 / 2.09 s.
+//   L^2 (complex Jacobi / complex multigrid): curvature 22.5 [5.6, 6.2] 5.28 / 4.75 s,
+//     5.43 / 5.70 s; umbrella 10 [3.2] Jacobi 1.7-1.9x faster; scale-dependent 2.5 [5.0, 3.9]
+//     3.90 / 3.29 s, 1.43 / 1.97 s; curvature 90 [11.3, 12.5] 8.02 / 5.72 s, 6.95 / 7.79 s;
+//     curvature 360 [22.5, 25] 10.83 / 6.36 s, 8.03 / 7.00 s.
+// So: first order from stiffness 20, L^2 from 8 (the defaults, at 3-6, stay on the Jacobi paths,
+// whose memory is lower: the hierarchy and one more vector cost 110-180 bytes per vertex; the
+// torus' L^2 at 90 is the one measured loss, 12 %), and only with at least kMultigridRows free
+// vertices (not measured below; a small solve is fast anyway).
+constexpr double kMultigridFirstOrder = 20;
+constexpr double kMultigridComplex = 8;
+constexpr double kMultigridRows = 50000;
+
+// Whether the multigrid preconditioner is used: asked for, or chosen by Automatic.
+bool use_multigrid(const LinearSystem& system, Preconditioner preconditioner) {
+    if (preconditioner == Preconditioner::Multigrid) return true;
+    if (preconditioner != Preconditioner::Automatic) return false;
+    const std::array<double, 2> s = stiffness(system);
+    return s[1] >= kMultigridRows &&
+           s[0] >= (system.order == 1 ? kMultigridFirstOrder : kMultigridComplex);
+}
+
 // CG's recursively updated residual drifts from the true one on ill-conditioned systems (the
 // L^2 forms), so convergence is confirmed on the true residual, restarting from the current
 // iterate when it disagrees, at most this many times.
@@ -452,10 +557,19 @@ constexpr int kMaxRestarts = 8;
 // Automatic, L^2 without soft weights (complex_factor.h): corrections by the complex solve until
 // the true L^2 residual meets the goal. Needs only b besides the complex solver's vectors.
 SolveStats solve_complex(const LinearSystem& system, Positions& x, const Positions& b,
-                         const Column3& scale, const Column3& goal, const SolveSettings& settings) {
+                         const Column3& scale, const Column3& goal, const SolveSettings& settings,
+                         bool multigrid) {
     SolveStats stats;
     stats.complex_factor = true;
     detail::ComplexFactorSolver solver(system);
+    std::unique_ptr<detail::Multigrid> cycle;
+    if (multigrid) {
+        cycle = std::make_unique<detail::Multigrid>(*system.op, system.diagonal, system.free,
+                                                    std::sqrt(system.lambda_dt),
+                                                    detail::Multigrid::Kind::Complex);
+        solver.use_preconditioner(cycle.get());
+        stats.multigrid = true;
+    }
     Progress progress(settings, goal);
     std::array<bool, 3> active{false, false, false};
     Column3 rn{0, 0, 0};
@@ -513,16 +627,29 @@ SolveStats solve_real(const LinearSystem& system, Positions& x, const Positions&
     Positions r(n, 3), p(n, 3), q(n, 3), scratch(system.order == 2 ? n : 0, 3);
     SolveStats stats;
     std::unique_ptr<FactoredPreconditioner> factored;
+    std::unique_ptr<detail::Multigrid> multigrid;
     Positions z;
     const auto use_factored = [&] {
         factored = std::make_unique<FactoredPreconditioner>(system, kInnerCap);
         z.resize(n, 3);
         stats.factored = true;
     };
-    bool trial_pending = system.order == 2 && settings.preconditioner == Preconditioner::Automatic;
+    // L^2 with soft weights has no multigrid path (the complex factor needs D = M): Multigrid
+    // then behaves as Automatic.
+    bool trial_pending = system.order == 2 &&
+                         (settings.preconditioner == Preconditioner::Automatic ||
+                          settings.preconditioner == Preconditioner::Multigrid);
     if (system.order == 2 && settings.preconditioner == Preconditioner::Factored) use_factored();
+    if (system.order == 1 && use_multigrid(system, settings.preconditioner)) {
+        multigrid = std::make_unique<detail::Multigrid>(*system.op, system.diagonal, system.free,
+                                                        system.lambda_dt,
+                                                        detail::Multigrid::Kind::Real);
+        z.resize(n, 3);
+        stats.multigrid = true;
+    }
     // Jacobi's diagonal (for L^2 a sweep over the 2-ring) only when Jacobi iterations may run.
-    const std::vector<double> inverse = factored ? std::vector<double>() : inverse_jacobi(system);
+    const std::vector<double> inverse =
+        factored || multigrid ? std::vector<double>() : inverse_jacobi(system);
     // The iteration cap bounds the work too: an inner iteration is one product with K, an
     // iteration of the L^2 system two, so the inner solves get twice the cap.
     const int inner_cap = 2 * settings.max_iterations;
@@ -541,6 +668,12 @@ SolveStats solve_real(const LinearSystem& system, Positions& x, const Positions&
         if (!any(active) || restart == kMaxRestarts || stats.iterations >= settings.max_iterations ||
             stats.inner_iterations >= inner_cap)
             break;
+        if (multigrid) {
+            stats.iterations = multigrid_cg(system, *multigrid, x, r, p, q, z, goal, settings.norm,
+                                            stats.iterations, settings.max_iterations, active, rn,
+                                            after_iteration);
+            continue;
+        }
         if (factored) {
             stats.iterations = factored_fcg(system, *factored, x, r, p, q, z, scratch, goal,
                                             settings.norm, stats.iterations,
@@ -580,8 +713,11 @@ SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& 
     const Column3 scale = right_hand_side(system, x, settings.norm, b);
     Column3 goal;
     for (int c = 0; c < 3; ++c) goal[c] = scale[c] > 0 ? settings.tolerance * scale[c] : 0.0;
-    if (settings.preconditioner == Preconditioner::Automatic && detail::complex_factor_applies(system))
-        return solve_complex(system, x, b, scale, goal, settings);
+    const bool complex = settings.preconditioner == Preconditioner::Automatic ||
+                         settings.preconditioner == Preconditioner::Multigrid;
+    if (complex && detail::complex_factor_applies(system))
+        return solve_complex(system, x, b, scale, goal, settings,
+                             use_multigrid(system, settings.preconditioner));
     return solve_real(system, x, b, scale, goal, settings);
 }
 

@@ -172,12 +172,15 @@ void addFilterParameters(CLI::App& app, CommandLine& cl, const Values& d)
 void addToolOptions(CLI::App& app, CommandLine& cl)
 {
     addChoice(app, "--preconditioner", cl.preconditioner,
-              "auto, jacobi or factored. factored (order 2 only) preconditions the L^2 system "
-              "with two first-order solves per iteration: its cost grows as the 4th root of the "
-              "time step instead of the square root. auto solves an L^2 step without vertex "
-              "weights as one complex first-order solve, Re (M + i sqrt(dt) K)^-1 b; with weights "
-              "it starts with jacobi and switches when the solve turns out heavy. Default: auto",
-              {"auto", "jacobi", "factored"}, "NAME");
+              "auto, jacobi, factored or multigrid. factored (order 2 only) preconditions the "
+              "L^2 system with two first-order solves per iteration: its cost grows as the 4th "
+              "root of the time step instead of the square root. multigrid uses a smoothed-"
+              "aggregation V-cycle, whose iterations barely grow with the time step (first order, "
+              "and L^2 without vertex weights). auto solves an L^2 step without vertex weights as "
+              "one complex first-order solve, Re (M + i sqrt(dt) K)^-1 b; with weights it starts "
+              "with jacobi and switches when the solve turns out heavy; on meshes of 50,000 "
+              "vertices or more it takes multigrid for strong steps. Default: auto",
+              {"auto", "jacobi", "factored", "multigrid"}, "NAME");
     app.add_option("--threads", cl.threads,
                    "Threads for the solver on meshes of 50,000 vertices or more (smaller ones "
                    "always use one): 0 = all cores (or OMP_NUM_THREADS). Default: 0")
@@ -259,10 +262,10 @@ fairing::Options engineOptions(const CommandLine& cl, const Values& v)
 {
     fairing::Options options = filter_parameters::toOptions(operatorOf(cl), v);
     options.threads = cl.threads;
-    options.preconditioner = cl.preconditioner == "jacobi" ? fairing::Preconditioner::Jacobi
-                             : cl.preconditioner == "factored"
-                                 ? fairing::Preconditioner::Factored
-                                 : fairing::Preconditioner::Automatic;
+    options.preconditioner = cl.preconditioner == "jacobi"      ? fairing::Preconditioner::Jacobi
+                             : cl.preconditioner == "factored"  ? fairing::Preconditioner::Factored
+                             : cl.preconditioner == "multigrid" ? fairing::Preconditioner::Multigrid
+                                                                : fairing::Preconditioner::Automatic;
     return options;
 }
 

@@ -28,7 +28,7 @@ struct CommandLine {
     double tolerance = 0;
     int maxIterations = 0;
     bool acceptUnconverged = false;
-    std::string preconditioner = "auto";     // auto | jacobi | factored
+    std::string preconditioner = "auto";     // auto | jacobi | factored | multigrid
     int threads = 0;
     bool json = false, ascii = false, quiet = false;
 };

@@ -64,9 +64,14 @@ enum class ResidualNorm { L2, LInfinity };  // Appendix A.2.
 // How the conjugate gradients are preconditioned (see solver.h).
 enum class Preconditioner {
     Automatic,  // L^2 without soft weights: one complex solve (solver.h); else Factored for
-                // L^2 steps strong enough to profit, Jacobi otherwise
+                // L^2 steps strong enough to profit, Jacobi otherwise; Multigrid in place of
+                // Jacobi for strong steps on meshes of 50,000 vertices or more
     Jacobi,     // the diagonal of the system: cheap, iterations grow as sqrt(lambda_dt)
     Factored,   // L^2 only: two first-order solves per iteration, iterations grow as lambda_dt^1/4
+    Multigrid,  // smoothed-aggregation multigrid V-cycle (src/multigrid.h): first order, and L^2
+                // without soft weights (complex solve); L^2 with soft weights falls back to
+                // Automatic's choice. Set-up costs about a few iterations; iterations stay
+                // nearly flat as lambda_dt grows
 };
 
 // A double or nothing: std::optional<double> for the C++14 callers of this header (MeshLab

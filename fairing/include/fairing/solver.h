@@ -33,6 +33,12 @@
 // the 1 M torus and the 1.2 M-face bunny at the defaults, and 1.2-1.9x less CPU time than
 // Factored (the cheaper of the old paths) on those two, so it replaces both there. With soft
 // weights Automatic keeps the Jacobi trial and Factored.
+//
+// Multigrid (src/multigrid.h): a smoothed-aggregation V-cycle in place of Jacobi, for the
+// first-order system (CG) and the complex solve of L^2 (COCG, with the complex Galerkin
+// hierarchy). Its iteration count saturates as lambda_dt grows where Jacobi's keeps growing, but
+// a cycle costs about three Jacobi iterations and its set-up about ten, so Automatic takes it
+// only for strong steps on large meshes (the measurements are in solver.cpp, use_multigrid).
 #pragma once
 
 #include "fairing/fairing.h"
@@ -64,6 +70,7 @@ struct SolveStats {
     int inner_iterations = 0;  // Factored: the first-order iterations inside B^-1
     bool factored = false;
     bool complex_factor = false;  // solved as Re (M + i sqrt(lambda_dt) K)^-1 (complex_factor.h)
+    bool multigrid = false;  // preconditioned by the multigrid V-cycle (src/multigrid.h)
     double residual = 0;  // max over columns of ||A x - b|| / ||b|| on the free rows
     bool converged = false;
 };

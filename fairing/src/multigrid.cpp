@@ -1,0 +1,640 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
+#include "multigrid.h"
+
+#include "kernels.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace fairing {
+namespace detail {
+namespace {
+
+// Rows of the coarsest level, solved by dense LU (a 300 x 300 complex LU is a few ms).
+constexpr int kCoarsest = 300;
+// A stalled coarsening may leave more rows than a dense LU affords: that level is then
+// smoothed (kCoarseSweeps Jacobi sweeps: still a symmetric operator) instead of solved.
+constexpr int kDenseLimit = 3000;
+// Jacobi sweeps before and after the coarse correction on the levels below the finest (where
+// they are cheap: the first coarse level has about 1/9 of the rows): measured on the 1.2 M-face
+// bunny (curvature L^2 22.5) 35 COCG iterations against 39 with one sweep.
+constexpr int kCoarseSweeps = 2;
+constexpr int kMaxLevels = 12;
+// Coarsening that keeps more than this fraction of the rows has stalled: stop there.
+constexpr double kStall = 0.8;
+// Weight of the Jacobi smoother times rho, the Gershgorin bound of rho(D_A^-1 A): below 2, so a
+// sweep contracts every mode of the real SPD matrix (w lambda_max <= 1.7). The bound is tight on
+// the mass-dominated levels of weak steps but some 40 % high on the stiffness-dominated ones,
+// where the usual 4/3 then damps too much: on a 10 k-vertex sphere (curvature, tests) 1.7
+// against 4/3 took 14 / 25 / 31 first-order iterations against 16 / 29 / 35 at time steps
+// 4.74 / 76 / 1213, and 21 / 34 / 43 against 23 / 39 / 48 for L^2 at 22.5 / 360 / 5760; 2.1
+// took fewer at strong steps but more at 22.5 (28), and 2.7 diverged on weak ones.
+constexpr double kSmootherWeight = 1.7;
+// Strength threshold of the coarse levels (on the finest level every mesh neighbour is strong:
+// the operator's own graph), halved per level as Vanek, Mandel and Brezina suggest.
+constexpr double kTheta = 0.0;
+
+// A matrix in compressed rows with its mass and stiffness parts (set-up only).
+struct Split {
+    std::vector<int> start{0}, col;
+    std::vector<double> mass, stiff;
+};
+
+// Compressed rows with one value per entry: the prolongator and its transpose, whose entries
+// need no more than float precision (the Galerkin products use the same rounded values, so
+// the cycle stays exactly symmetric) and so take 8 bytes instead of 12.
+struct Csr {
+    std::vector<int> start{0}, col;
+    std::vector<float> val;
+};
+
+}  // namespace
+
+struct Multigrid::Impl {
+    struct Level {
+        int n = 0;
+        int threads = 1;
+        // Matrix of levels >= 1 (level 0 is the operator itself): B = re (+ i im).
+        std::vector<int> start, col;
+        std::vector<double> re, im;
+        // Damped inverse diagonal of B: w / B_ii (Complex: re, im pairs); 0 on excluded rows.
+        std::vector<double> inv;
+        Csr p, r;  // prolongation from the next level and restriction R = P^T
+        std::vector<double> b, x, res;  // work vectors, width W per row (level 0: the caller's)
+    };
+
+    const SparseOperator& op;
+    const std::vector<double>& diagonal;
+    const std::vector<char>& free;
+    double a;
+    Kind kind;
+    int width;
+    std::vector<Level> levels;
+    Eigen::PartialPivLU<Eigen::MatrixXd> lu_real;
+    Eigen::PartialPivLU<Eigen::MatrixXcd> lu_complex;
+    bool dense = false;  // the coarsest level is solved by LU (else smoothed)
+    double* fine_work = nullptr;  // level 0's residual vector, lent by the caller of apply()
+
+    double* work(Level& level, int l) { return l == 0 ? fine_work : level.res.data(); }
+
+    Impl(const SparseOperator& o, const std::vector<double>& d, const std::vector<char>& f,
+         double a_, Kind k)
+        : op(o), diagonal(d), free(f), a(a_), kind(k), width(k == Kind::Real ? 3 : 6) {}
+
+    template <class Row>
+    Split coarsen(int n, const Row& row, const std::vector<double>& adiag, double theta,
+                  Level& fine, double* omega_out);
+    void build();
+    void finish_level(Level& level, Split m, double omega);
+    void coarsest(const Level& level);
+
+    template <int W, bool C, class X>
+    void row_product(const Level& level, int l, int i, const X& x, double* y) const;
+    template <int W, bool C>
+    void residual(const Level& level, int l, const double* b, const double* x,
+                  double* res) const;
+    template <int W, bool C>
+    void smooth(Level& level, int l, const double* b, double* x);
+    template <int W, bool C>
+    void cycle(int l, const double* b, double* x, double* dots);
+    template <int W, bool C>
+    void solve_coarsest(const Level& level, const double* b, double* x) const;
+};
+
+namespace {
+
+// agg[i]: aggregate of row i, -1 for excluded rows (not free, or A_ii <= 0). Greedy in three
+// passes (Vanek et al. 1996, section 3): roots whose strong neighbours are all free of any
+// aggregate take them; the rest join a neighbouring aggregate of the first pass; leftovers
+// form aggregates of their own. Returns the number of aggregates.
+template <class Strong>
+int aggregate(int n, const std::vector<double>& adiag, const Strong& strong,
+              std::vector<int>& agg) {
+    constexpr int kNone = -2;
+    agg.assign(static_cast<std::size_t>(n), kNone);
+    for (int i = 0; i < n; ++i)
+        if (!(adiag[i] > 0)) agg[i] = -1;
+    int count = 0;
+    for (int i = 0; i < n; ++i) {
+        if (agg[i] != kNone) continue;
+        bool all_free = true;
+        strong(i, [&](int j) { all_free = all_free && agg[j] == kNone; });
+        if (!all_free) continue;
+        agg[i] = count;
+        strong(i, [&](int j) { agg[j] = count; });
+        ++count;
+    }
+    std::vector<int> joined(agg);
+    for (int i = 0; i < n; ++i) {
+        if (agg[i] != kNone) continue;
+        strong(i, [&](int j) {
+            if (joined[i] == kNone && agg[j] >= 0) joined[i] = agg[j];
+        });
+    }
+    agg.swap(joined);
+    for (int i = 0; i < n; ++i) {
+        if (agg[i] != kNone) continue;
+        agg[i] = count;
+        strong(i, [&](int j) {
+            if (agg[j] == kNone) agg[j] = count;
+        });
+        ++count;
+    }
+    return count;
+}
+
+// R = P^T (nc columns), rows filled in increasing fine row: the same on every run.
+Csr transpose(const Csr& p, int nc) {
+    Csr r;
+    r.start.assign(static_cast<std::size_t>(nc) + 1, 0);
+    for (int c : p.col) ++r.start[c + 1];
+    for (int c = 0; c < nc; ++c) r.start[c + 1] += r.start[c];
+    r.col.resize(p.col.size());
+    r.val.resize(p.val.size());
+    std::vector<int> next(r.start.begin(), r.start.end() - 1);
+    const int n = static_cast<int>(p.start.size()) - 1;
+    for (int i = 0; i < n; ++i)
+        for (int e = p.start[i]; e < p.start[i + 1]; ++e) {
+            const int k = next[p.col[e]]++;
+            r.col[k] = i;
+            r.val[k] = p.val[e];
+        }
+    return r;
+}
+
+// Jacobi weight of a level that is not coarsened.
+double last_weight(const Split& m, const std::vector<double>& adiag, double a) {
+    double rho = 0;
+    const int n = static_cast<int>(m.start.size()) - 1;
+    for (int i = 0; i < n; ++i) {
+        if (!(adiag[i] > 0)) continue;
+        double sum = 0;
+        for (int e = m.start[i]; e < m.start[i + 1]; ++e) sum += std::abs(m.mass[e] - a * m.stiff[e]);
+        rho = std::max(rho, sum / adiag[i]);
+    }
+    return rho > 0 ? kSmootherWeight / rho : 0.0;
+}
+
+// R B P in both parts (mass, stiffness), coarse row by coarse row (Gustavson, dense
+// accumulators): each coarse row sums its entries in a fixed order.
+template <class Row>
+Split galerkin(int nc, const Csr& r, const Csr& p, const Row& row) {
+    Split coarse;
+    std::vector<double> acc_m(static_cast<std::size_t>(nc), 0.0), acc_s(acc_m);
+    std::vector<int> mark(static_cast<std::size_t>(nc), -1), touched;
+    for (int c = 0; c < nc; ++c) {
+        touched.clear();
+        for (int e = r.start[c]; e < r.start[c + 1]; ++e) {
+            const int i = r.col[e];
+            const double ri = r.val[e];  // the float entry, as the cycle applies it
+            row(i, [&](int k, double m, double s) {
+                for (int f = p.start[k]; f < p.start[k + 1]; ++f) {
+                    const int b = p.col[f];
+                    if (mark[b] != c) {
+                        mark[b] = c;
+                        touched.push_back(b);
+                        acc_m[b] = acc_s[b] = 0;
+                    }
+                    acc_m[b] += ri * m * p.val[f];
+                    acc_s[b] += ri * s * p.val[f];
+                }
+            });
+        }
+        for (int b : touched) {
+            coarse.col.push_back(b);
+            coarse.mass.push_back(acc_m[b]);
+            coarse.stiff.push_back(acc_s[b]);
+        }
+        coarse.start.push_back(static_cast<int>(coarse.col.size()));
+    }
+    return coarse;
+}
+
+}  // namespace
+
+// Aggregates, the smoothed prolongator (into fine.p, fine.r) and the Galerkin coarse matrix
+// R B P (both parts) of a level whose rows row(i, fn) lists as fn(j, mass, stiff), diagonal
+// included. adiag: diagonal of A = mass - a stiff. *omega_out: the smoother's weight.
+template <class Row>
+Split Multigrid::Impl::coarsen(int n, const Row& row, const std::vector<double>& adiag,
+                               double theta, Level& fine, double* omega_out) {
+    const double aa = a;
+    const auto strong = [&](int i, auto&& fn) {
+        if (!(adiag[i] > 0)) return;
+        row(i, [&](int j, double m, double s) {
+            if (j == i || !(adiag[j] > 0)) return;
+            const double v = m - aa * s;
+            if (std::abs(v) >= theta * std::sqrt(adiag[i] * adiag[j]) && v != 0) fn(j);
+        });
+    };
+    std::vector<int> agg;
+    const int nc = aggregate(n, adiag, strong, agg);
+    // Gershgorin bound of rho(D_A^-1 A).
+    double rho = 0;
+    for (int i = 0; i < n; ++i) {
+        if (!(adiag[i] > 0)) continue;
+        double sum = 0;
+        row(i, [&](int, double m, double s) { sum += std::abs(m - aa * s); });
+        rho = std::max(rho, sum / adiag[i]);
+    }
+    const double omega = rho > 0 ? 4.0 / (3.0 * rho) : 0.0;
+    *omega_out = rho > 0 ? kSmootherWeight / rho : 0.0;
+    // P = (I - w D_A^-1 A) P_tent, row by row (merged per aggregate).
+    Csr& p = fine.p;
+    std::vector<std::pair<int, double>> entries;
+    for (int i = 0; i < n; ++i) {
+        if (agg[i] >= 0) {
+            entries.clear();
+            entries.emplace_back(agg[i], 1.0);
+            const double scale = omega / adiag[i];
+            row(i, [&](int j, double m, double s) {
+                if (agg[j] >= 0) entries.emplace_back(agg[j], -scale * (m - aa * s));
+            });
+            std::sort(entries.begin(), entries.end(),
+                      [](const std::pair<int, double>& x, const std::pair<int, double>& y) {
+                          return x.first < y.first;
+                      });
+            for (std::size_t k = 0; k < entries.size();) {
+                double v = 0;
+                const int c = entries[k].first;
+                for (; k < entries.size() && entries[k].first == c; ++k) v += entries[k].second;
+                p.col.push_back(c);
+                p.val.push_back(static_cast<float>(v));
+            }
+        }
+        p.start.push_back(static_cast<int>(p.col.size()));
+    }
+    p.col.shrink_to_fit();
+    p.val.shrink_to_fit();
+    fine.r = transpose(p, nc);
+    Split coarse = galerkin(nc, fine.r, p, row);
+    coarse.col.shrink_to_fit();
+    coarse.mass.shrink_to_fit();
+    coarse.stiff.shrink_to_fit();
+    return coarse;
+}
+
+// The matrix of a coarse level (B = mass - a stiff, or mass + i a stiff) and its smoother.
+void Multigrid::Impl::finish_level(Level& level, Split m, double omega) {
+    const int n = static_cast<int>(m.start.size()) - 1;
+    level.n = n;
+    level.threads = n >= kParallelRows ? op.threads : 1;
+    const bool complex = kind == Kind::Complex;
+    // In place: the mass part becomes re, the stiffness part im (or is folded into re).
+    for (std::size_t e = 0; e < m.mass.size(); ++e) {
+        if (complex) m.stiff[e] *= a;
+        else m.mass[e] -= a * m.stiff[e];
+    }
+    level.re = std::move(m.mass);
+    if (complex) level.im = std::move(m.stiff);
+    std::vector<double>().swap(m.stiff);
+    level.start = std::move(m.start);
+    level.col = std::move(m.col);
+    level.inv.assign(static_cast<std::size_t>(complex ? 2 * n : n), 0.0);
+    for (int i = 0; i < n; ++i)
+        for (int e = level.start[i]; e < level.start[i + 1]; ++e) {
+            if (level.col[e] != i) continue;
+            if (!complex) {
+                if (level.re[e] > 0) level.inv[i] = omega / level.re[e];
+                continue;
+            }
+            const double dr = level.re[e], di = level.im[e], d2 = dr * dr + di * di;
+            if (d2 > 0) {
+                level.inv[2 * i] = omega * dr / d2;
+                level.inv[2 * i + 1] = -omega * di / d2;
+            }
+        }
+    const std::size_t w = static_cast<std::size_t>(width) * n;
+    level.b.assign(w, 0.0);
+    level.x.assign(w, 0.0);
+    level.res.assign(w, 0.0);
+}
+
+void Multigrid::Impl::build() {
+    const int n = op.size();
+    levels.reserve(kMaxLevels);
+    levels.emplace_back();
+    Level& fine = levels.back();
+    fine.n = n;
+    fine.threads = op.threads;
+    const int* start = op.row_start.data();
+    const int* column = op.column.data();
+    const double* weight = op.weight.data();
+    const auto fine_row = [&](int i, auto&& fn) {
+        if (!free[i]) return;
+        double kii = 0;
+        for (int e = start[i]; e < start[i + 1]; ++e) {
+            kii -= weight[e];
+            if (free[column[e]]) fn(column[e], 0.0, weight[e]);
+        }
+        fn(i, diagonal[i], kii);
+    };
+    std::vector<double> adiag(static_cast<std::size_t>(n), 0.0);
+    for (int i = 0; i < n; ++i)
+        if (free[i]) adiag[i] = diagonal[i] - a * op.diagonal(i);
+    double omega = 0;
+    Split coarse = coarsen(n, fine_row, adiag, 0.0, levels[0], &omega);
+    // Level 0's smoother: the diagonal of B itself.
+    const bool complex = kind == Kind::Complex;
+    fine.inv.assign(static_cast<std::size_t>(complex ? 2 * n : n), 0.0);
+    for (int i = 0; i < n; ++i) {
+        if (!(adiag[i] > 0)) continue;
+        if (!complex) {
+            fine.inv[i] = omega / adiag[i];
+            continue;
+        }
+        const double dr = diagonal[i], di = a * op.diagonal(i), d2 = dr * dr + di * di;
+        fine.inv[2 * i] = omega * dr / d2;
+        fine.inv[2 * i + 1] = -omega * di / d2;
+    }
+    if (coarse.start.size() == 1) return;  // no free row: level 0 alone, smoothed
+    double theta = kTheta;
+    for (int l = 1;; ++l) {
+        const int nc = static_cast<int>(coarse.start.size()) - 1;
+        const int nf = levels[l - 1].n;
+        levels.emplace_back();
+        Split m = std::move(coarse);
+        std::vector<double> cdiag(static_cast<std::size_t>(nc), 0.0);
+        for (int i = 0; i < nc; ++i)
+            for (int e = m.start[i]; e < m.start[i + 1]; ++e)
+                if (m.col[e] == i) cdiag[i] = m.mass[e] - a * m.stiff[e];
+        const auto coarse_row = [&m](int i, auto&& fn) {
+            for (int e = m.start[i]; e < m.start[i + 1]; ++e) fn(m.col[e], m.mass[e], m.stiff[e]);
+        };
+        const bool last = nc <= kCoarsest || nc > kStall * nf || l + 1 == kMaxLevels;
+        if (last) {
+            const double last_w = last_weight(m, cdiag, a);
+            finish_level(levels[l], std::move(m), last_w);
+            coarsest(levels[l]);
+            return;
+        }
+        coarse = coarsen(nc, coarse_row, cdiag, theta, levels[l], &omega);
+        finish_level(levels[l], std::move(m), omega);
+        theta *= 0.5;
+    }
+}
+
+void Multigrid::Impl::coarsest(const Level& level) {
+    const int n = level.n;
+    dense = n <= kDenseLimit;
+    if (!dense) return;
+    if (kind == Kind::Complex) {
+        Eigen::MatrixXcd dense = Eigen::MatrixXcd::Zero(n, n);
+        for (int i = 0; i < n; ++i)
+            for (int e = level.start[i]; e < level.start[i + 1]; ++e)
+                dense(i, level.col[e]) = {level.re[e], level.im[e]};
+        lu_complex.compute(dense);
+        return;
+    }
+    Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(n, n);
+    for (int i = 0; i < n; ++i)
+        for (int e = level.start[i]; e < level.start[i + 1]; ++e)
+            dense(i, level.col[e]) = level.re[e];
+    lu_real.compute(dense);
+}
+
+// (B x)_i on level l into y (W columns; C: complex pairs (c, 3 + c)); x(j, v) writes x_j to v.
+template <int W, bool C, class X>
+void Multigrid::Impl::row_product(const Level& level, int l, int i, const X& x,
+                                  double* y) const {
+    double xi[W], xj[W];
+    if (l == 0) {
+        // x is zero on the fixed rows, so sum_j w_ij (x_j - x_i) is (K_ff x)_i.
+        x(i, xi);
+        double k[W] = {};
+        for (int e = op.row_start[i]; e < op.row_start[i + 1]; ++e) {
+            x(op.column[e], xj);
+            const double w = op.weight[e];
+            for (int c = 0; c < W; ++c) k[c] += w * (xj[c] - xi[c]);
+        }
+        const double d = diagonal[i];
+        if constexpr (C) {
+            for (int c = 0; c < 3; ++c) {
+                y[c] = d * xi[c] - a * k[3 + c];
+                y[3 + c] = d * xi[3 + c] + a * k[c];
+            }
+        } else {
+            for (int c = 0; c < W; ++c) y[c] = d * xi[c] - a * k[c];
+        }
+        return;
+    }
+    for (int c = 0; c < W; ++c) y[c] = 0;
+    for (int e = level.start[i]; e < level.start[i + 1]; ++e) {
+        x(level.col[e], xj);
+        const double re = level.re[e];
+        if constexpr (C) {
+            const double im = level.im[e];
+            for (int c = 0; c < 3; ++c) {
+                y[c] += re * xj[c] - im * xj[3 + c];
+                y[3 + c] += re * xj[3 + c] + im * xj[c];
+            }
+        } else {
+            for (int c = 0; c < W; ++c) y[c] += re * xj[c];
+        }
+    }
+}
+
+namespace {
+
+// out = inv_i g (the damped inverse diagonal of row i; complex pairs when C).
+template <int W, bool C>
+inline void scale(const double* inv, int i, const double* g, double* out) {
+    if constexpr (C) {
+        const double wr = inv[2 * i], wi = inv[2 * i + 1];
+        for (int c = 0; c < 3; ++c) {
+            const double gr = g[c], gi = g[3 + c];
+            out[c] = wr * gr - wi * gi;
+            out[3 + c] = wr * gi + wi * gr;
+        }
+    } else {
+        for (int c = 0; c < W; ++c) out[c] = inv[i] * g[c];
+    }
+}
+
+}  // namespace
+
+// res = b - B x.
+template <int W, bool C>
+void Multigrid::Impl::residual(const Level& level, int l, const double* b, const double* x,
+                               double* res) const {
+    const auto load = [x](int j, double* v) {
+        for (int c = 0; c < W; ++c) v[c] = x[W * j + c];
+    };
+    for_each_row(level.n, level.threads, [&](int i) {
+        double y[W];
+        row_product<W, C>(level, l, i, load, y);
+        for (int c = 0; c < W; ++c) res[W * i + c] = b[W * i + c] - y[c];
+    });
+}
+
+// One damped Jacobi sweep x += w D^-1 (b - B x) (level.res is the work space).
+template <int W, bool C>
+void Multigrid::Impl::smooth(Level& level, int l, const double* b, double* x) {
+    double* res = work(level, l);
+    residual<W, C>(level, l, b, x, res);
+    const double* inv = level.inv.data();
+    for_each_row(level.n, level.threads, [=](int i) {
+        double u[W];
+        scale<W, C>(inv, i, res + W * i, u);
+        for (int c = 0; c < W; ++c) x[W * i + c] += u[c];
+    });
+}
+
+template <int W, bool C>
+void Multigrid::Impl::solve_coarsest(const Level& level, const double* b, double* x) const {
+    const int n = level.n;
+    if constexpr (C) {
+        Eigen::MatrixXcd rhs(n, 3);
+        for (int i = 0; i < n; ++i)
+            for (int c = 0; c < 3; ++c) rhs(i, c) = {b[W * i + c], b[W * i + 3 + c]};
+        const Eigen::MatrixXcd sol = lu_complex.solve(rhs);
+        for (int i = 0; i < n; ++i)
+            for (int c = 0; c < 3; ++c) {
+                x[W * i + c] = sol(i, c).real();
+                x[W * i + 3 + c] = sol(i, c).imag();
+            }
+    } else {
+        Eigen::MatrixXd rhs(n, W);
+        for (int i = 0; i < n; ++i)
+            for (int c = 0; c < W; ++c) rhs(i, c) = b[W * i + c];
+        const Eigen::MatrixXd sol = lu_real.solve(rhs);
+        for (int i = 0; i < n; ++i)
+            for (int c = 0; c < W; ++c) x[W * i + c] = sol(i, c);
+    }
+}
+
+// x = V(b) on level l: smooth, restrict the residual, recurse, prolong, smooth. The finest
+// level takes one sweep each way, fused with the products (x = w D^-1 b is never stored, the
+// corrected x lives in res once the residual is restricted), which saves two passes over the
+// vectors; coarser levels take kCoarseSweeps each way. dots (level 0): the unconjugated
+// products b^T x per column (re; im for width 6), summed in fixed blocks.
+template <int W, bool C>
+void Multigrid::Impl::cycle(int l, const double* b, double* x, double* dots) {
+    Level& level = levels[l];
+    const double* inv = level.inv.data();
+    if (l + 1 == static_cast<int>(levels.size())) {
+        if (dense) {
+            solve_coarsest<W, C>(level, b, x);
+            return;
+        }
+        for_each_row(level.n, level.threads, [&](int i) { scale<W, C>(inv, i, b + W * i, x + W * i); });
+        for (int k = 1; k < kCoarseSweeps; ++k) smooth<W, C>(level, l, b, x);
+        return;
+    }
+    Level& next = levels[l + 1];
+    double* res = work(level, l);
+    const int sweeps = l == 0 ? 1 : kCoarseSweeps;
+    if (sweeps == 1) {
+        const auto jacobi_b = [b, inv](int j, double* v) { scale<W, C>(inv, j, b + W * j, v); };
+        for_each_row(level.n, level.threads, [&](int i) {
+            double y[W];
+            row_product<W, C>(level, l, i, jacobi_b, y);
+            for (int c = 0; c < W; ++c) res[W * i + c] = b[W * i + c] - y[c];
+        });
+    } else {
+        for_each_row(level.n, level.threads, [&](int i) { scale<W, C>(inv, i, b + W * i, x + W * i); });
+        for (int k = 1; k < sweeps; ++k) smooth<W, C>(level, l, b, x);
+        residual<W, C>(level, l, b, x, res);
+    }
+    const Csr& r = level.r;
+    double* bc = next.b.data();
+    for_each_row(next.n, next.threads, [&](int c) {
+        double s[W] = {};
+        for (int e = r.start[c]; e < r.start[c + 1]; ++e) {
+            const double* ri = res + W * r.col[e];
+            for (int k = 0; k < W; ++k) s[k] += r.val[e] * ri[k];
+        }
+        for (int k = 0; k < W; ++k) bc[W * c + k] = s[k];
+    });
+    cycle<W, C>(l + 1, next.b.data(), next.x.data(), nullptr);
+    const Csr& p = level.p;
+    const double* xc = next.x.data();
+    double* corrected = sweeps == 1 ? res : x;
+    for_each_row(level.n, level.threads, [&](int i) {
+        double v[W];
+        if (sweeps == 1) scale<W, C>(inv, i, b + W * i, v);
+        else for (int k = 0; k < W; ++k) v[k] = x[W * i + k];
+        for (int e = p.start[i]; e < p.start[i + 1]; ++e)
+            for (int k = 0; k < W; ++k) v[k] += p.val[e] * xc[W * p.col[e] + k];
+        for (int k = 0; k < W; ++k) corrected[W * i + k] = v[k];
+    });
+    if (sweeps > 1) {
+        for (int k = 0; k < sweeps; ++k) smooth<W, C>(level, l, b, x);
+        return;
+    }
+    const auto load = [res](int j, double* v) {
+        for (int c = 0; c < W; ++c) v[c] = res[W * j + c];
+    };
+    const std::array<double, 6> sums = blocked_sum<6>(level.n, level.threads, [&](int i, double* a) {
+        double y[W], g[W], u[W];
+        row_product<W, C>(level, l, i, load, y);
+        for (int c = 0; c < W; ++c) g[c] = b[W * i + c] - y[c];
+        scale<W, C>(inv, i, g, u);
+        double* xi = x + W * i;
+        for (int c = 0; c < W; ++c) xi[c] = res[W * i + c] + u[c];
+        if (!dots) return;
+        const double* bi = b + W * i;
+        if constexpr (W == 3) {
+            for (int c = 0; c < 3; ++c) a[c] += bi[c] * xi[c];
+        } else {
+            for (int c = 0; c < 3; ++c) {
+                a[c] += bi[c] * xi[c] - bi[3 + c] * xi[3 + c];
+                a[3 + c] += bi[c] * xi[3 + c] + bi[3 + c] * xi[c];
+            }
+        }
+    });
+    if (dots)
+        for (int k = 0; k < 6; ++k) dots[k] = sums[k];
+}
+
+Multigrid::Multigrid(const SparseOperator& op, const std::vector<double>& diagonal,
+                     const std::vector<char>& free, double a, Kind kind)
+    : impl_(std::make_unique<Impl>(op, diagonal, free, a, kind)) {
+    impl_->build();
+}
+
+Multigrid::~Multigrid() = default;
+
+std::array<double, 6> Multigrid::apply(const double* r, double* z, double* work) {
+    impl_->fine_work = work;
+    std::array<double, 6> dots{};
+    switch (impl_->kind) {
+    case Kind::Real: impl_->cycle<3, false>(0, r, z, dots.data()); break;
+    case Kind::Complex: impl_->cycle<6, true>(0, r, z, dots.data()); break;
+    }
+    if (impl_->levels.size() > 1) return dots;
+    // Level 0 alone (no free row) took the coarsest branch, which sums nothing.
+    const int w = impl_->width;
+    return blocked_sum<6>(impl_->levels[0].n, impl_->levels[0].threads, [=](int i, double* a) {
+        for (int c = 0; c < 3; ++c) {
+            if (w == 3) {
+                a[c] += r[3 * i + c] * z[3 * i + c];
+                continue;
+            }
+            a[c] += r[6 * i + c] * z[6 * i + c] - r[6 * i + 3 + c] * z[6 * i + 3 + c];
+            a[3 + c] += r[6 * i + c] * z[6 * i + 3 + c] + r[6 * i + 3 + c] * z[6 * i + c];
+        }
+    });
+}
+
+int Multigrid::width() const { return impl_->width; }
+int Multigrid::levels() const { return static_cast<int>(impl_->levels.size()); }
+
+std::size_t Multigrid::bytes() const {
+    std::size_t total = 0;
+    const auto add = [&total](const auto& v) { total += v.capacity() * sizeof(v[0]); };
+    for (const Impl::Level& level : impl_->levels) {
+        add(level.start), add(level.col), add(level.re), add(level.im), add(level.inv);
+        add(level.p.start), add(level.p.col), add(level.p.val);
+        add(level.r.start), add(level.r.col), add(level.r.val);
+        add(level.b), add(level.x), add(level.res);
+    }
+    return total;
+}
+
+}  // namespace detail
+}  // namespace fairing
