@@ -151,6 +151,11 @@ struct SolveReport {
     bool factored = false;  // the Factored preconditioner was used
     double residual = 0;   // max over x, y, z of ||A X - b|| / ||b|| in the chosen norm
     bool converged = true;
+    // > 0: this one report covers that many steps with a frozen operator, taken at once as a
+    // matrix function (src/frozen_steps.h); `iterations` then counts its products with the
+    // system (both Lanczos passes) and `residual` is the estimated error of the result relative
+    // to the positions (D-norm), which the steps' tolerance bounds.
+    int frozen_steps = 0;
 };
 
 enum class Restoration {

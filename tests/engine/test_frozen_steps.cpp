@@ -1,0 +1,225 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
+// Section 4.3: s steps with a frozen operator are one linear filter, taken at once
+// (src/frozen_steps.h). Each result is checked against the steps one by one with dense solves
+// (and the volume restoration after every step), so the shortcut must be the same filter.
+#include "meshes.h"
+
+#include "fairing/half_edge.h"
+#include "fairing/invariants.h"
+#include "fairing/operators.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace {
+
+using fairing::HalfEdgeMesh;
+using fairing::Operator;
+using fairing::Options;
+using fairing::Positions;
+using fairing::SparseOperator;
+using fairing::TriangleMesh;
+
+constexpr Operator kOperators[] = {Operator::Umbrella, Operator::ScaleDependent,
+                                   Operator::CurvatureFlow};
+
+// A lumpy sphere: asymmetric, so smoothing moves its centroid and the restoration's translation
+// matters.
+TriangleMesh lumpy_sphere() { return meshes::radial_noise(meshes::icosphere(2), 0.08, 21); }
+
+Options frozen(Operator op, int order, double time_step, int steps) {
+    Options o;
+    o.op = op;
+    o.order = order;
+    o.time_step = time_step;
+    o.steps = steps;
+    o.freeze_operator = true;
+    o.preserve_volume = false;
+    o.tolerance = 1e-12;
+    o.max_iterations = 20000;
+    return o;
+}
+
+// The steps one by one on the first operator, each followed (restore) by the rescaling of every
+// closed component to its initial volume about its centroid.
+Positions dense_steps(const HalfEdgeMesh& he, const SparseOperator& k0, const Positions& x0,
+                      double ldt, int order, int steps, bool restore,
+                      const std::vector<double>& weights = {}, const std::vector<char>& free = {}) {
+    const std::vector<char> all(x0.rows(), 1);
+    std::vector<double> target;
+    for (const fairing::Component& c : he.components())
+        target.push_back(fairing::component_volume(he, c, x0));
+    Positions x = x0;
+    for (int s = 0; s < steps; ++s) {
+        x = meshes::dense_implicit_step(k0, x, ldt, order, weights, free);
+        if (!restore) continue;
+        for (std::size_t c = 0; c < he.components().size(); ++c)
+            fairing::restore_measure(he, he.components()[c], all, target[c], x);
+    }
+    return x;
+}
+
+// The run took its steps at once: one report covering all of them.
+void expect_at_once(const fairing::Result& r, int steps) {
+    ASSERT_EQ(r.solves.size(), 1u);
+    EXPECT_EQ(r.solves[0].frozen_steps, steps);
+    EXPECT_TRUE(r.solves[0].converged);
+    EXPECT_EQ(r.steps, steps);
+    EXPECT_GT(r.total_iterations, 0);
+}
+
+}  // namespace
+
+TEST(FrozenSteps, EqualTheStepsOneByOne) {
+    const TriangleMesh m = lumpy_sphere();
+    const HalfEdgeMesh he = HalfEdgeMesh::build(m.positions, m.triangles);
+    for (Operator op : kOperators)
+        for (int order : {1, 2}) {
+            SCOPED_TRACE(testing::Message() << fairing::to_string(op) << " order " << order);
+            const Options o = frozen(op, order, order == 1 ? 2.0 : 4.0, 4);
+            const fairing::Result r = fairing::fair(m, {}, o);
+            expect_at_once(r, 4);
+            const SparseOperator k0 = fairing::assemble(op, he, m.positions);
+            const Positions x = dense_steps(he, k0, m.positions, r.lambda_dt, order, 4, false);
+            EXPECT_LT(meshes::max_row_distance(r.positions, x), 1e-9);
+            // Not one step of four times the strength: the steps compose.
+            const Positions one = meshes::dense_implicit_step(k0, m.positions, 4 * r.lambda_dt, order);
+            EXPECT_GT(meshes::max_row_distance(r.positions, one), 1e-4);
+        }
+}
+
+// Volume restoration after every step: the filter keeps constants, so the rescalings commute
+// with it, but the centroid of the lumpy solid moves as it is smoothed, so the translation
+// needs every intermediate result. Restoring once at the end about the final centroid is
+// shown to be measurably different.
+TEST(FrozenSteps, VolumeRestoredAfterEveryStep) {
+    const TriangleMesh m = lumpy_sphere();
+    const HalfEdgeMesh he = HalfEdgeMesh::build(m.positions, m.triangles);
+    for (Operator op : kOperators)
+        for (int order : {1, 2}) {
+            SCOPED_TRACE(testing::Message() << fairing::to_string(op) << " order " << order);
+            Options o = frozen(op, order, order == 1 ? 2.0 : 4.0, 5);
+            o.preserve_volume = true;
+            const fairing::Result r = fairing::fair(m, {}, o);
+            expect_at_once(r, 5);
+            EXPECT_EQ(r.components[0].restoration, fairing::Restoration::Scale);
+            EXPECT_NEAR(r.volume_after, r.volume_before, 1e-12 * r.volume_before);
+            const SparseOperator k0 = fairing::assemble(op, he, m.positions);
+            const Positions x = dense_steps(he, k0, m.positions, r.lambda_dt, order, 5, true);
+            EXPECT_LT(meshes::max_row_distance(r.positions, x), 1e-9);
+            Positions at_end = dense_steps(he, k0, m.positions, r.lambda_dt, order, 5, false);
+            fairing::restore_measure(he, he.components()[0], std::vector<char>(m.positions.rows(), 1),
+                                     r.volume_before, at_end);
+            EXPECT_GT(meshes::max_row_distance(at_end, x), 1e-7);
+        }
+}
+
+// Fixed boundary vertices make each step affine (their coupling moves to the right-hand side);
+// the open component restores nothing by default.
+TEST(FrozenSteps, FixedBoundaryOfAnOpenMesh) {
+    const TriangleMesh m = meshes::noisy_open_grid(12, 0.2, 0.3);
+    const HalfEdgeMesh he = HalfEdgeMesh::build(m.positions, m.triangles);
+    std::vector<char> free(m.positions.rows(), 1);
+    for (int v = 0; v < he.num_vertices(); ++v) free[v] = he.is_boundary_vertex(v) ? 0 : 1;
+    for (Operator op : kOperators)
+        for (int order : {1, 2}) {
+            SCOPED_TRACE(testing::Message() << fairing::to_string(op) << " order " << order);
+            Options o = frozen(op, order, 3.0, 3);
+            o.preserve_volume = true;  // nothing to restore on an open component (None)
+            const fairing::Result r = fairing::fair(m, {}, o);
+            expect_at_once(r, 3);
+            const SparseOperator k0 = fairing::assemble(op, he, m.positions);
+            const Positions x = dense_steps(he, k0, m.positions, r.lambda_dt, order, 3, false, {}, free);
+            EXPECT_LT(meshes::max_row_distance(r.positions, x), 1e-9);
+            for (int v = 0; v < he.num_vertices(); ++v)
+                if (!free[v]) {
+                    EXPECT_EQ(r.positions.row(v), m.positions.row(v));
+                }
+        }
+}
+
+// The area of an open component with fixed vertices is restored by a normal offset, which is
+// not linear: the steps are then taken one by one, as before.
+TEST(FrozenSteps, NormalOffsetFallsBackToOneByOne) {
+    const TriangleMesh m = meshes::noisy_open_grid(12, 0.2, 0.3);
+    Options o = frozen(Operator::CurvatureFlow, 2, 3.0, 3);
+    o.preserve_volume = true;
+    o.open_invariant = fairing::OpenInvariant::Area;
+    const fairing::Result r = fairing::fair(m, {}, o);
+    ASSERT_EQ(r.solves.size(), 3u);
+    for (const auto& s : r.solves) EXPECT_EQ(s.frozen_steps, 0);
+    EXPECT_EQ(r.components[0].restoration, fairing::Restoration::NormalOffset);
+}
+
+// Soft constraints (section 2.7): D = M / w. For order 2 the system no longer factors over the
+// complex numbers and the Krylov space is built with the L^2 operator itself.
+TEST(FrozenSteps, SoftWeights) {
+    const TriangleMesh m = lumpy_sphere();
+    const HalfEdgeMesh he = HalfEdgeMesh::build(m.positions, m.triangles);
+    fairing::Constraints constraints;
+    for (int i = 0; i < m.positions.rows(); ++i)
+        constraints.weights.push_back(i % 7 == 0 ? 0.0 : 0.2 + 0.8 * ((i * 37) % 11) / 10.0);
+    for (Operator op : {Operator::Umbrella, Operator::CurvatureFlow})
+        for (int order : {1, 2}) {
+            SCOPED_TRACE(testing::Message() << fairing::to_string(op) << " order " << order);
+            const Options o = frozen(op, order, 2.0, 3);
+            const fairing::Result r = fairing::fair(m, constraints, o);
+            expect_at_once(r, 3);
+            const SparseOperator k0 = fairing::assemble(op, he, m.positions);
+            const Positions x =
+                dense_steps(he, k0, m.positions, r.lambda_dt, order, 3, false, constraints.weights);
+            EXPECT_LT(meshes::max_row_distance(r.positions, x), 1e-9);
+        }
+}
+
+// At the default tolerance the result is as close to the exact steps as the steps one by one
+// at that tolerance are.
+TEST(FrozenSteps, DefaultToleranceIsKept) {
+    const TriangleMesh m = lumpy_sphere();
+    const HalfEdgeMesh he = HalfEdgeMesh::build(m.positions, m.triangles);
+    Options o = frozen(Operator::CurvatureFlow, 2, 22.5, 10);
+    o.tolerance = Options().tolerance;
+    o.preserve_volume = true;
+    const fairing::Result r = fairing::fair(m, {}, o);
+    expect_at_once(r, 10);
+    EXPECT_LE(r.max_residual, o.tolerance);
+    const SparseOperator k0 = fairing::assemble(Operator::CurvatureFlow, he, m.positions);
+    const Positions x = dense_steps(he, k0, m.positions, r.lambda_dt, 2, 10, true);
+    // One solve to 1e-8 leaves an error of at most 1e-8 of the positions' size (radius 1).
+    EXPECT_LT(meshes::max_row_distance(r.positions, x), 1e-7);
+}
+
+TEST(FrozenSteps, ProgressIsMonotoneAndEndsAtOne) {
+    const TriangleMesh m = lumpy_sphere();
+    Options o = frozen(Operator::CurvatureFlow, 2, 22.5, 10);
+    o.preserve_volume = true;
+    std::vector<double> seen;
+    o.progress = [&](double f) { seen.push_back(f); };
+    const fairing::Result r = fairing::fair(m, {}, o);
+    expect_at_once(r, 10);
+    ASSERT_GT(seen.size(), 2u);
+    for (std::size_t i = 1; i < seen.size(); ++i) EXPECT_GE(seen[i], seen[i - 1]);
+    EXPECT_GE(seen.front(), 0.0);
+    EXPECT_EQ(seen.back(), 1.0);
+}
+
+// Every sum is blocked (kernels.h): two threads give the same bits as one.
+TEST(FrozenSteps, TwoThreadsGiveTheSameBits) {
+    const TriangleMesh m = meshes::radial_noise(meshes::icosphere(7), 0.002);
+    ASSERT_GE(m.positions.rows(), 50000);
+    for (int order : {1, 2}) {
+        SCOPED_TRACE(testing::Message() << "order " << order);
+        Options o = frozen(Operator::CurvatureFlow, order, order == 1 ? 4.74 : 22.5, 3);
+        o.tolerance = 1e-8;
+        o.preserve_volume = true;
+        o.threads = 1;
+        const fairing::Result one = fairing::fair(m, {}, o);
+        expect_at_once(one, 3);
+        o.threads = 2;
+        const fairing::Result two = fairing::fair(m, {}, o);
+        EXPECT_EQ(meshes::max_row_distance(one.positions, two.positions), 0.0);
+        EXPECT_EQ(one.total_iterations, two.total_iterations);
+    }
+}
