@@ -7,6 +7,7 @@
 #include "fairing/operators.h"
 #include "fairing/solver.h"
 #include "auto_strength.h"
+#include "complex_factor.h"
 #include "frozen_steps.h"
 #include "geometry.h"
 #include "kernels.h"
@@ -297,19 +298,27 @@ LinearSystem Run::system_for(const SparseOperator& op, const std::vector<char>& 
     return linear;
 }
 
-// Steps with a frozen operator taken at once, for about the price of one solve
-// (src/frozen_steps.h). Measured with fairing-bench-tool, one thread, 10 steps / 1 step
-// (bench/results/issue12/frozen.md): FROZEN_EVIDENCE. It is the same filter
-// as the steps one by one only with implicit steps on one system (no boundary curve first),
-// the L2 stopping rule, and every restored component either rescaled whole (all its vertices
-// free: the filter then keeps constants on it and the rescaling commutes with it) or not
-// moving at all; a normal offset (fixed vertices) is not linear. Anywhere else, or when the
-// Lanczos process gives up, the steps are taken one by one as before (false, x_ untouched).
-// The single-precision intermediate results of a rescaled run cost 12 bytes per vertex and
-// step, hence the cap.
+// Steps with a frozen operator taken at once (src/frozen_steps.h). Chosen for the L^2 steps
+// without soft weights and the automatic preconditioner (the filters' defaults), where the
+// Krylov space is that of the first-order operator: measured with fairing-bench-tool, one
+// thread, process CPU seconds, 10 frozen steps against 1 step (bench/results/issue12/frozen.md),
+// curvature L^2 at 22.5: 12.0 s / 5.1 s on the 1.2 M-face bunny (36.6 s step by step) and
+// 10.1 s / 5.4 s on the 1 M-face torus (26.4 s); umbrella L^2 at 10: 3.4 s / 1.3 s and
+// 2.6 s / 0.9 s (7.3 s, 5.4 s). Not chosen for first-order steps: 10 steps of lambda need
+// about as many Lanczos steps as one step of 10 lambda, and two passes of them cost 10.4 s
+// against 8.3 s step by step on the bunny (curvature L at 4.74), as much on the torus. With
+// soft weights the Krylov space would be the L^2 operator's, unpreconditioned: not measured,
+// expected slower than the steps' preconditioned solves. The process is the same filter as the
+// steps one by one only with implicit steps on one system (no boundary curve first), the L2
+// stopping rule, and every restored component either rescaled whole (all its vertices free:
+// the filter then keeps constants on it and the rescaling commutes with it) or not moving; a
+// normal offset (fixed vertices) is not linear. Anywhere else, or when the Lanczos process gives
+// up, the steps are taken one by one as before (false, x_ untouched). A rescaled run keeps the
+// intermediate results, 24 bytes per vertex and step, hence the cap.
 bool Run::take_frozen_steps(double lambda_dt, int steps) {
     constexpr int kMaxRescaledSteps = 17;
-    if (options_.integration != Integration::Implicit || options_.norm != ResidualNorm::L2)
+    if (options_.integration != Integration::Implicit || options_.norm != ResidualNorm::L2 ||
+        options_.order != 2 || options_.preconditioner != Preconditioner::Automatic)
         return false;
     const std::vector<char> free = surface_free();
     detail::FrozenProblem problem;
@@ -334,6 +343,7 @@ bool Run::take_frozen_steps(double lambda_dt, int steps) {
     }
     if (!problem.rescaled.empty() && steps > kMaxRescaledSteps) return false;
     const LinearSystem system = system_for(surface_, free, lambda_dt);
+    if (!detail::complex_factor_applies(system)) return false;
     problem.system = &system;
     problem.steps = steps;
     problem.tolerance = options_.tolerance;

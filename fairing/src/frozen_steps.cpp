@@ -84,16 +84,44 @@ double distance(const std::vector<double>& a, const std::vector<double>& b) {
 
 double norm(const std::vector<double>& a) { return distance(a, {}); }
 
-// What the second pass adds up: acc += c_j z_j, and kept[m] += (c^(m+1)_j - c_j) z_j
-// (m = 0..s-2, interleaved per vertex): X_{m+1} = X_s - kept[m], whose rounding error is then
-// relative to the difference between the two results, not to the positions.
+// What the second pass adds up: acc += c_j z_j, and kept[m] += c^(m+1)_j z_j (m = 0..s-2,
+// interleaved per vertex) while j < end[m]: fewer steps describe the smoother filters of
+// fewer steps (their coefficients decay sooner), and skipping their tails saves memory traffic.
 struct Accumulation {
     std::array<const std::vector<double>*, 3> final{};
     std::array<const std::vector<std::vector<double>>*, 3> partial{};
     Positions* acc = nullptr;
     std::vector<double>* kept = nullptr;
     int kept_steps = 0;
+    std::vector<int> end;  // increasing in m
+    // Step j's coefficients, [c] for acc and [3 (m + 1) + c] for kept[m], set by at(), and the
+    // first kept[m] still accumulating.
+    std::vector<double> step;
+    int first = 0;
+
+    void at(int j) {
+        step.assign(3 * (kept_steps + 1), 0.0);
+        while (first < kept_steps && j >= end[first]) ++first;
+        for (int c = 0; c < 3; ++c) {
+            const std::vector<double>& f = *final[c];
+            step[c] = j < static_cast<int>(f.size()) ? f[j] : 0.0;
+            for (int m = first; m < kept_steps; ++m) {
+                const std::vector<double>& p = (*partial[c])[m];
+                step[3 * (m + 1) + c] = j < static_cast<int>(p.size()) ? p[j] : 0.0;
+            }
+        }
+    }
 };
+
+// The shortest prefix of `c` whose tail has a norm <= goal.
+int prefix(const std::vector<double>& c, double goal) {
+    double tail = 0;
+    for (int j = static_cast<int>(c.size()) - 1; j >= 0; --j) {
+        tail += c[j] * c[j];
+        if (std::sqrt(tail) > goal) return j + 1;
+    }
+    return 0;
+}
 
 // The Lanczos process on G (or G1), three columns at once, in z = D^-1/2 v form: G v becomes
 // D^-1 C z, products need no scaling, and x_s = x_0 - sum_j c_j z_j.
@@ -136,7 +164,7 @@ public:
 
     // One step: returns alpha_j per column, and sets norm() to |w_{j+1}| (0 for a column whose
     // Krylov space is exhausted: it stays at zero).
-    Column3 step(int j, const Accumulation* accumulate) {
+    Column3 step(const Accumulation* accumulate) {
         const Column3 bq = g_.apply_dot(b_, q_, scratch_);
         Column3 alpha{0, 0, 0}, inverse{0, 0, 0};
         for (int c = 0; c < 3; ++c)
@@ -144,7 +172,7 @@ public:
                 inverse[c] = 1 / norm_[c];
                 alpha[c] = bq[c] * inverse[c] * inverse[c];
             }
-        const Column3 squares = update(alpha, inverse, j, accumulate);
+        const Column3 squares = update(alpha, inverse, accumulate);
         for (int c = 0; c < 3; ++c) {
             previous_[c] = inverse[c] > 0 ? std::sqrt(squares[c]) : 0.0;
             norm_[c] = previous_[c];
@@ -158,7 +186,7 @@ public:
 private:
     // z_j = B / |B|; w = D^-1 C z_j - alpha z_j - beta_{j-1} z_{j-1} into A, z_j into B;
     // returns |w|^2 in the D-norm. Fixed rows stay zero.
-    Column3 update(const Column3& alpha, const Column3& inverse, int j, const Accumulation* acc) {
+    Column3 update(const Column3& alpha, const Column3& inverse, const Accumulation* acc) {
         const int n = system_.op->size();
         const char* f = system_.free.data();
         const double* d = system_.diagonal.data();
@@ -166,29 +194,30 @@ private:
         double* bs = b_.data();
         const double* qs = q_.data();
         const Column3 beta = previous_;
+        const double* step = acc ? acc->step.data() : nullptr;
+        double* sum = acc ? acc->acc->data() : nullptr;
+        double* kept = acc ? acc->kept->data() : nullptr;
+        const int kept_columns = acc ? 3 * acc->kept_steps : 0;
         return blocked_sum<3>(n, system_.op->threads, [&](int i, double* s) {
             if (!f[i]) return;
+            double z[3];
             for (int c = 0; c < 3; ++c) {
-                const double z = bs[3 * i + c] * inverse[c];
-                const double w = qs[3 * i + c] * inverse[c] / d[i] - alpha[c] * z -
+                z[c] = bs[3 * i + c] * inverse[c];
+                const double w = qs[3 * i + c] * inverse[c] / d[i] - alpha[c] * z[c] -
                                  beta[c] * as[3 * i + c];
                 as[3 * i + c] = w;
-                bs[3 * i + c] = z;
+                bs[3 * i + c] = z[c];
                 s[c] += d[i] * w * w;
-                if (acc) accumulate(*acc, i, c, j, z);
+            }
+            if (!step) return;
+            for (int c = 0; c < 3; ++c) sum[3 * i + c] += step[c] * z[c];
+            double* k = kept + static_cast<std::size_t>(i) * kept_columns;
+            for (int e = 3 * acc->first; e < kept_columns; e += 3) {
+                k[e] += step[3 + e] * z[0];
+                k[e + 1] += step[4 + e] * z[1];
+                k[e + 2] += step[5 + e] * z[2];
             }
         });
-    }
-
-    static void accumulate(const Accumulation& acc, int i, int c, int j, double z) {
-        const std::vector<double>& final = *acc.final[c];
-        if (j < static_cast<int>(final.size())) (*acc.acc)(i, c) += final[j] * z;
-        for (int m = 0; m < acc.kept_steps; ++m) {
-            const std::vector<double>& partial = (*acc.partial[c])[m];
-            if (j < static_cast<int>(partial.size()))
-                (*acc.kept)[(static_cast<std::size_t>(i) * acc.kept_steps + m) * 3 + c] +=
-                    (partial[j] - (j < static_cast<int>(final.size()) ? final[j] : 0.0)) * z;
-        }
     }
 
     const LinearSystem& system_;
@@ -214,6 +243,7 @@ struct FirstPass {
     double error = 0;
     std::array<Tridiagonal, 3> t;
     Column3 beta0{0, 0, 0};
+    Column3 scale{0, 0, 0};
 };
 
 // Builds T_k until the coefficients settle (see frozen_steps.h), or gives up.
@@ -223,12 +253,13 @@ FirstPass first_pass(const FrozenProblem& p, Lanczos& lanczos, const Positions& 
     const double lambda = p.system->lambda_dt;
     out.beta0 = lanczos.start(x0);
     const Column3 scale = scale_of(*p.system, x0);
+    out.scale = scale;
     std::array<std::vector<double>, 3> last;
     Column3 first_error{0, 0, 0};
     std::array<bool, 3> live{};
     for (int c = 0; c < 3; ++c) live[c] = out.beta0[c] > 0;
     for (int j = 0; j < p.max_iterations; ++j) {
-        const Column3 alpha = lanczos.step(j, nullptr);
+        const Column3 alpha = lanczos.step(nullptr);
         const Column3& next = lanczos.norm();
         for (int c = 0; c < 3; ++c) {
             if (!live[c]) continue;
@@ -279,11 +310,11 @@ struct Rescaling {
 
 constexpr double kRounding = 1e-14;
 
-// X_k = X_s - kept[k-1] on the free rows, into `work` (whose other rows hold X_s); returns the
-// largest |X_k - X_s| entry.
+// X_k = x_0 - kept[k-1] on the free rows, into `work` (whose other rows hold x_0 = X_s);
+// returns the largest entry of kept[k-1], which scales its rounding.
 double intermediate(const FrozenProblem& p, const std::vector<double>& kept, int k,
-                    const Positions& shape, Positions& work) {
-    const int n = static_cast<int>(shape.rows());
+                    const Positions& x0, Positions& work) {
+    const int n = static_cast<int>(x0.rows());
     const int m = p.steps - 1;
     const char* f = p.system->free.data();
     double largest = 0;
@@ -291,7 +322,7 @@ double intermediate(const FrozenProblem& p, const std::vector<double>& kept, int
         if (f[i])
             for (int c = 0; c < 3; ++c) {
                 const double d = kept[(static_cast<std::size_t>(i) * m + k - 1) * 3 + c];
-                work(i, c) = shape(i, c) - d;
+                work(i, c) = x0(i, c) - d;
                 largest = std::max(largest, std::abs(d));
             }
     return largest;
@@ -327,7 +358,7 @@ bool restore_at_end(const FrozenProblem& p, const Positions& acc, const std::vec
     Positions work = count > 0 ? shape : Positions();
     std::vector<double> a_previous(count, 1.0);  // a_0 = 1
     for (int k = 1; k < s && count > 0; ++k) {
-        const double largest = intermediate(p, kept, k, shape, work);
+        const double largest = intermediate(p, kept, k, x, work);
         for (std::size_t c = 0; c < count; ++c) {
             double a;
             Vec3 centroid;
@@ -378,13 +409,22 @@ FrozenOutcome take_frozen_steps(const FrozenProblem& p, Positions& x) {
         acc.partial[c] = &partial[c];
     }
     Positions sum = Positions::Zero(x.rows(), 3);
+    // kept[m] to the accuracy of the result: its error enters x_s only multiplied by a
+    // difference of two rescalings.
+    acc.end.assign(kept_steps, 0);
+    for (int m = 0; m < kept_steps; ++m)
+        for (int c = 0; c < 3; ++c)
+            acc.end[m] = std::max(acc.end[m], prefix(partial[c][m], kSafety * p.tolerance *
+                                                                        first.scale[c]));
+    for (int m = 1; m < kept_steps; ++m) acc.end[m] = std::max(acc.end[m], acc.end[m - 1]);
     std::vector<double> kept(static_cast<std::size_t>(x.rows()) * 3 * kept_steps, 0.0);
     acc.acc = &sum;
     acc.kept = &kept;
     acc.kept_steps = kept_steps;
     lanczos->start(x);
     for (int j = 0; j < first.steps; ++j) {
-        lanczos->step(j, &acc);
+        acc.at(j);
+        lanczos->step(&acc);
         if (p.progress) p.progress(0.5 + 0.5 * (j + 1) / first.steps);
     }
     outcome.products += first.steps + 1;

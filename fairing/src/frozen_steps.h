@@ -25,19 +25,21 @@
 // than kSafety * tolerance * |D^1/2 x_0| (per column, the D-norm of the error of the step's
 // result: one solve to `tolerance` guarantees that bound, as A >= D) between checks 4 Lanczos
 // steps apart; the second recomputes the same basis bit for bit (same arithmetic, the stored
-// coefficients) and accumulates V_k phi(T_k) e1. The basis is never stored: five n x 3 arrays
-// (120 bytes per vertex), plus 12 (s - 1) bytes per vertex when the intermediate results are
-// wanted (volume restoration, below). Every sum is blocked (kernels.h), so the result is
-// bit-identical for any number of threads.
+// coefficients) and accumulates V_k phi(T_k) e1. The basis is never stored: four n x 3 arrays
+// (96 bytes per vertex) and the sum, plus 24 (s - 1) bytes per vertex when the intermediate
+// results are wanted (volume restoration, below). Every sum is blocked (kernels.h), so the
+// result is bit-identical for any number of threads.
 //
 // Volume restoration after each step (fairing.h) rescales each closed component about its
 // centroid. The filter is linear and keeps constants on a component whose vertices are all
 // free, so with X_k the unrestored k-step result the step-by-step path yields exactly
-// a_s X_s + t_s, with a_k = (V_0 / V(X_k))^(1/3) (area: ^(1/2)) and t_k = t_{k-1} +
-// (a_{k-1} - a_k) g_k, g_k the centroid of X_k (a_0 = 1, t_0 = 0). The scale depends on X_s
-// alone, but the translation needs every X_k (smoothing moves the centroid of an asymmetric
-// solid), so the second pass also keeps X_1..X_{s-1} in single precision (their centroids and
-// volumes enter t_s only multiplied by the small a_{k-1} - a_k).
+// g_s + a_s (X_s - g_s) + delta, with a_k = (V_0 / V(X_k))^(1/3) (area: ^(1/2)), g_k the
+// centroid of X_k and delta = sum_k (a_{k-1} - a_k) (g_k - g_s) (a_0 = 1). The scale depends on
+// X_s alone, but delta needs every X_k (smoothing moves the centroid of an asymmetric solid:
+// restoring once at the end is off by delta, 1e-6 to 1e-4 of the radius on the tests' lumpy
+// sphere), so the second pass also accumulates X_1..X_{s-1} (each only until its coefficients'
+// tail is below the goal: fewer steps filter more smoothly and converge sooner). Their volumes
+// and centroids are then measured on the mesh, s - 1 sweeps over its faces.
 //
 // The caller decides when this applies (fairing.cpp); here the process gives up (x untouched,
 // FrozenOutcome::taken false) when it does not converge within max_iterations Lanczos steps or

@@ -1,13 +1,17 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Section 4.3: s steps with a frozen operator are one linear filter, taken at once
-// (src/frozen_steps.h). Each result is checked against the steps one by one with dense solves
-// (and the volume restoration after every step), so the shortcut must be the same filter.
+// (src/frozen_steps.h) for the L^2 steps without soft weights. Each result is checked against
+// the steps one by one with dense solves (and the volume restoration after every step), so the
+// shortcut must be the same filter; the cases fair() leaves to the steps one by one are checked
+// to be left, and the general process (first order, soft weights) directly.
 #include "meshes.h"
 
 #include "fairing/half_edge.h"
 #include "fairing/invariants.h"
 #include "fairing/operators.h"
+#include "fairing/solver.h"
+#include "frozen_steps.h"
 
 #include <gtest/gtest.h>
 
@@ -72,6 +76,12 @@ void expect_at_once(const fairing::Result& r, int steps) {
 
 }  // namespace
 
+// The run took its steps one by one: one report per step.
+void expect_one_by_one(const fairing::Result& r, int steps) {
+    ASSERT_EQ(r.solves.size(), static_cast<std::size_t>(steps));
+    for (const auto& s : r.solves) EXPECT_EQ(s.frozen_steps, 0);
+}
+
 TEST(FrozenSteps, EqualTheStepsOneByOne) {
     const TriangleMesh m = lumpy_sphere();
     const HalfEdgeMesh he = HalfEdgeMesh::build(m.positions, m.triangles);
@@ -80,7 +90,9 @@ TEST(FrozenSteps, EqualTheStepsOneByOne) {
             SCOPED_TRACE(testing::Message() << fairing::to_string(op) << " order " << order);
             const Options o = frozen(op, order, order == 1 ? 2.0 : 4.0, 4);
             const fairing::Result r = fairing::fair(m, {}, o);
-            expect_at_once(r, 4);
+            // First-order steps are cheaper one by one (fairing.cpp, take_frozen_steps).
+            if (order == 2) expect_at_once(r, 4);
+            else expect_one_by_one(r, 4);
             const SparseOperator k0 = fairing::assemble(op, he, m.positions);
             const Positions x = dense_steps(he, k0, m.positions, r.lambda_dt, order, 4, false);
             EXPECT_LT(meshes::max_row_distance(r.positions, x), 1e-9);
@@ -98,9 +110,9 @@ TEST(FrozenSteps, VolumeRestoredAfterEveryStep) {
     const TriangleMesh m = lumpy_sphere();
     const HalfEdgeMesh he = HalfEdgeMesh::build(m.positions, m.triangles);
     for (Operator op : kOperators)
-        for (int order : {1, 2}) {
+        for (int order : {2}) {
             SCOPED_TRACE(testing::Message() << fairing::to_string(op) << " order " << order);
-            Options o = frozen(op, order, order == 1 ? 2.0 : 4.0, 5);
+            Options o = frozen(op, order, 4.0, 5);
             o.preserve_volume = true;
             const fairing::Result r = fairing::fair(m, {}, o);
             expect_at_once(r, 5);
@@ -124,7 +136,7 @@ TEST(FrozenSteps, FixedBoundaryOfAnOpenMesh) {
     std::vector<char> free(m.positions.rows(), 1);
     for (int v = 0; v < he.num_vertices(); ++v) free[v] = he.is_boundary_vertex(v) ? 0 : 1;
     for (Operator op : kOperators)
-        for (int order : {1, 2}) {
+        for (int order : {2}) {
             SCOPED_TRACE(testing::Message() << fairing::to_string(op) << " order " << order);
             Options o = frozen(op, order, 3.0, 3);
             o.preserve_volume = true;  // nothing to restore on an open component (None)
@@ -153,25 +165,69 @@ TEST(FrozenSteps, NormalOffsetFallsBackToOneByOne) {
     EXPECT_EQ(r.components[0].restoration, fairing::Restoration::NormalOffset);
 }
 
-// Soft constraints (section 2.7): D = M / w. For order 2 the system no longer factors over the
-// complex numbers and the Krylov space is built with the L^2 operator itself.
-TEST(FrozenSteps, SoftWeights) {
+Positions centred(const Positions& x) {
+    return x.rowwise() - 0.5 * (x.colwise().minCoeff() + x.colwise().maxCoeff());
+}
+
+// Soft constraints (section 2.7): D = M / w. The L^2 system then no longer factors over the
+// complex numbers, the Krylov space would be the L^2 operator's, and fair() takes the steps one
+// by one; the process itself is checked on the same systems below.
+TEST(FrozenSteps, SoftWeightsOneByOne) {
     const TriangleMesh m = lumpy_sphere();
     const HalfEdgeMesh he = HalfEdgeMesh::build(m.positions, m.triangles);
     fairing::Constraints constraints;
     for (int i = 0; i < m.positions.rows(); ++i)
         constraints.weights.push_back(i % 7 == 0 ? 0.0 : 0.2 + 0.8 * ((i * 37) % 11) / 10.0);
+    const Options o = frozen(Operator::CurvatureFlow, 2, 2.0, 3);
+    const fairing::Result r = fairing::fair(m, constraints, o);
+    expect_one_by_one(r, 3);
+    const SparseOperator k0 = fairing::assemble(Operator::CurvatureFlow, he, m.positions);
+    const Positions x =
+        dense_steps(he, k0, m.positions, r.lambda_dt, 2, 3, false, constraints.weights);
+    EXPECT_LT(meshes::max_row_distance(r.positions, x), 1e-9);
+}
+
+// The general process (Krylov space of G = D^-1/2 C D^-1/2 itself), which fair() does not
+// choose: first order, and soft weights with either order, fixed rows (weight 0) included.
+TEST(FrozenSteps, GeneralProcessWithSoftWeights) {
+    const TriangleMesh m = lumpy_sphere();
+    const HalfEdgeMesh he = HalfEdgeMesh::build(m.positions, m.triangles);
+    const Positions x0 = centred(m.positions);
+    std::vector<double> weights;
+    for (int i = 0; i < x0.rows(); ++i)
+        weights.push_back(i % 7 == 0 ? 0.0 : 0.2 + 0.8 * ((i * 37) % 11) / 10.0);
     for (Operator op : {Operator::Umbrella, Operator::CurvatureFlow})
-        for (int order : {1, 2}) {
-            SCOPED_TRACE(testing::Message() << fairing::to_string(op) << " order " << order);
-            const Options o = frozen(op, order, 2.0, 3);
-            const fairing::Result r = fairing::fair(m, constraints, o);
-            expect_at_once(r, 3);
-            const SparseOperator k0 = fairing::assemble(op, he, m.positions);
-            const Positions x =
-                dense_steps(he, k0, m.positions, r.lambda_dt, order, 3, false, constraints.weights);
-            EXPECT_LT(meshes::max_row_distance(r.positions, x), 1e-9);
-        }
+        for (int order : {1, 2})
+            for (bool soft : {false, true}) {
+                SCOPED_TRACE(testing::Message() << fairing::to_string(op) << " order " << order
+                                                << " soft " << soft);
+                const SparseOperator k0 = fairing::assemble(op, he, x0);
+                fairing::LinearSystem system;
+                system.op = &k0;
+                system.order = order;
+                system.lambda_dt = op == Operator::Umbrella ? 1.0 : order == 1 ? 0.05 : 0.002;
+                system.free.assign(x0.rows(), 1);
+                system.diagonal = k0.mass;
+                for (int i = 0; i < x0.rows() && soft; ++i) {
+                    system.free[i] = weights[i] > 0;
+                    if (weights[i] > 0) system.diagonal[i] = k0.mass[i] / weights[i];
+                    else system.diagonal[i] = 1;
+                }
+                fairing::detail::FrozenProblem problem;
+                problem.system = &system;
+                problem.steps = 3;
+                problem.tolerance = 1e-12;
+                problem.max_iterations = 20000;
+                problem.mesh = &he;
+                Positions x = x0;
+                const fairing::detail::FrozenOutcome outcome =
+                    fairing::detail::take_frozen_steps(problem, x);
+                ASSERT_TRUE(outcome.taken);
+                const Positions expected = dense_steps(he, k0, x0, system.lambda_dt, order, 3,
+                                                       false, soft ? weights : std::vector<double>());
+                EXPECT_LT(meshes::max_row_distance(x, expected), 1e-9);
+                EXPECT_GT(meshes::max_row_distance(x, x0), 1e-3);
+            }
 }
 
 // At the default tolerance the result is as close to the exact steps as the steps one by one
@@ -209,9 +265,9 @@ TEST(FrozenSteps, ProgressIsMonotoneAndEndsAtOne) {
 TEST(FrozenSteps, TwoThreadsGiveTheSameBits) {
     const TriangleMesh m = meshes::radial_noise(meshes::icosphere(7), 0.002);
     ASSERT_GE(m.positions.rows(), 50000);
-    for (int order : {1, 2}) {
-        SCOPED_TRACE(testing::Message() << "order " << order);
-        Options o = frozen(Operator::CurvatureFlow, order, order == 1 ? 4.74 : 22.5, 3);
+    for (Operator op : {Operator::Umbrella, Operator::CurvatureFlow}) {
+        SCOPED_TRACE(testing::Message() << fairing::to_string(op));
+        Options o = frozen(op, 2, 22.5, 3);
         o.tolerance = 1e-8;
         o.preserve_volume = true;
         o.threads = 1;
