@@ -298,28 +298,31 @@ LinearSystem Run::system_for(const SparseOperator& op, const std::vector<char>& 
     return linear;
 }
 
-// Steps with a frozen operator taken at once (src/frozen_steps.h). Chosen for the L^2 steps
-// without soft weights and the automatic preconditioner (the filters' defaults), where the
-// Krylov space is that of the first-order operator. Measured with fairing-bench-tool, one
-// thread, process CPU seconds, 10 frozen steps against 1 step (bench/results/issue12/frozen.md):
-// curvature L^2 at 22.5, 12.0 s / 5.1 s on the 1.2 M-face bunny (37.2 s step by step) and
-// 8.8 s / 5.5 s on a 1 M-face torus (25.7 s); umbrella L^2 at 10, 2.7 s / 1.3 s (7.3 s) and
-// 2.1 s / 0.9 s (5.4 s). Not chosen for first-order steps: 10 steps of lambda need about as
-// many Lanczos steps as one step of 10 lambda, and two passes of them cost 10.3 s against
-// 9.3 s step by step on the bunny (curvature L at 4.74; 7.5 s against 9.5 s on the torus).
-// With soft weights the Krylov space would be the L^2 operator's, unpreconditioned: not
-// measured, expected slower than the steps' preconditioned solves. The process is the same
-// filter as the steps one by one only with implicit steps on one system (no boundary curve
-// first), the L2 stopping rule, and every restored component either rescaled whole (all its
-// vertices free: the filter then keeps constants on it and the rescaling commutes with it up to
-// a translation the process replays) or not moving; a normal offset (fixed vertices) is not
-// linear. Anywhere else, or when the Lanczos process gives up, the steps are taken one by one
-// as before (false, x_ untouched). A rescaled run keeps the intermediate results, 24 bytes per
-// vertex and step, hence the cap.
+// Steps with a frozen operator taken at once (src/frozen_steps.h), where measured cheaper than
+// the steps one by one with fairing-bench-tool, one thread, process CPU seconds, 10 frozen steps
+// (bench/results/issue12/frozen.md):
+// - L^2 without soft weights, automatic preconditioner (the filters' defaults; the Krylov space
+//   is that of the first-order operator): curvature L^2 at 22.5, 12.0 s against 37.2 s on the
+//   1.2 M-face bunny and 8.8 s against 25.7 s on a 1 M-face torus (one step: 5.1 s, 5.5 s);
+//   umbrella L^2 at 10, 2.7 s against 7.3 s and 2.1 s against 5.4 s.
+// - First order when no component is rescaled (open components, volume off): curvature L at
+//   4.74, 7.4 s against 8.8 s (bunny) and 5.5 s against 9.3 s (torus). With rescaling, 10 steps
+//   of lambda need about as many Lanczos steps as one of 10 lambda and the intermediate results
+//   the rescaling needs make the second pass dearer: 10.3 s against 9.3 s on the bunny (7.5 s
+//   against 9.5 s on the torus), so those stay one by one.
+// - L^2 with soft weights: the Krylov space would be the L^2 operator's, unpreconditioned; not
+//   measured, expected slower than the steps' preconditioned solves: one by one.
+// The process is the same filter as the steps one by one only with implicit steps on one system
+// (no boundary curve first), the L2 stopping rule, and every restored component either rescaled
+// whole (all its vertices free: the filter then keeps constants on it and the rescaling commutes
+// with it up to a translation the process replays) or not moving; a normal offset (fixed
+// vertices) is not linear. Anywhere else, or when the Lanczos process gives up, the steps are
+// taken one by one as before (false, x_ untouched). A rescaled run keeps the intermediate
+// results, 24 bytes per vertex and step, hence the cap.
 bool Run::take_frozen_steps(double lambda_dt, int steps) {
     constexpr int kMaxRescaledSteps = 17;
     if (options_.integration != Integration::Implicit || options_.norm != ResidualNorm::L2 ||
-        options_.order != 2 || options_.preconditioner != Preconditioner::Automatic)
+        options_.preconditioner != Preconditioner::Automatic)
         return false;
     const std::vector<char> free = surface_free();
     detail::FrozenProblem problem;
@@ -344,7 +347,8 @@ bool Run::take_frozen_steps(double lambda_dt, int steps) {
     }
     if (!problem.rescaled.empty() && steps > kMaxRescaledSteps) return false;
     const LinearSystem system = system_for(surface_, free, lambda_dt);
-    if (!detail::complex_factor_applies(system)) return false;
+    const bool first_order_unscaled = options_.order == 1 && problem.rescaled.empty();
+    if (!first_order_unscaled && !detail::complex_factor_applies(system)) return false;
     problem.system = &system;
     problem.steps = steps;
     problem.tolerance = options_.tolerance;

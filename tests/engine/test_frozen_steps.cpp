@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Section 4.3: s steps with a frozen operator are one linear filter, taken at once
-// (src/frozen_steps.h) for the L^2 steps without soft weights. Each result is checked against
+// (src/frozen_steps.h) where that is cheaper (fairing.cpp). Each result is checked against
 // the steps one by one with dense solves (and the volume restoration after every step), so the
 // shortcut must be the same filter; the cases fair() leaves to the steps one by one are checked
 // to be left, and the general process (first order, soft weights) directly.
@@ -90,9 +90,7 @@ TEST(FrozenSteps, EqualTheStepsOneByOne) {
             SCOPED_TRACE(testing::Message() << fairing::to_string(op) << " order " << order);
             const Options o = frozen(op, order, order == 1 ? 2.0 : 4.0, 4);
             const fairing::Result r = fairing::fair(m, {}, o);
-            // First-order steps are cheaper one by one (fairing.cpp, take_frozen_steps).
-            if (order == 2) expect_at_once(r, 4);
-            else expect_one_by_one(r, 4);
+            expect_at_once(r, 4);
             const SparseOperator k0 = fairing::assemble(op, he, m.positions);
             const Positions x = dense_steps(he, k0, m.positions, r.lambda_dt, order, 4, false);
             EXPECT_LT(meshes::max_row_distance(r.positions, x), 1e-9);
@@ -128,6 +126,20 @@ TEST(FrozenSteps, VolumeRestoredAfterEveryStep) {
         }
 }
 
+// First-order steps with a rescaled component are cheaper one by one (fairing.cpp,
+// take_frozen_steps): left to the steps, with the same result.
+TEST(FrozenSteps, FirstOrderWithVolumeRestorationOneByOne) {
+    const TriangleMesh m = lumpy_sphere();
+    const HalfEdgeMesh he = HalfEdgeMesh::build(m.positions, m.triangles);
+    Options o = frozen(Operator::CurvatureFlow, 1, 2.0, 3);
+    o.preserve_volume = true;
+    const fairing::Result r = fairing::fair(m, {}, o);
+    expect_one_by_one(r, 3);
+    const SparseOperator k0 = fairing::assemble(Operator::CurvatureFlow, he, m.positions);
+    const Positions x = dense_steps(he, k0, m.positions, r.lambda_dt, 1, 3, true);
+    EXPECT_LT(meshes::max_row_distance(r.positions, x), 1e-9);
+}
+
 // Fixed boundary vertices make each step affine (their coupling moves to the right-hand side);
 // the open component restores nothing by default.
 TEST(FrozenSteps, FixedBoundaryOfAnOpenMesh) {
@@ -136,7 +148,7 @@ TEST(FrozenSteps, FixedBoundaryOfAnOpenMesh) {
     std::vector<char> free(m.positions.rows(), 1);
     for (int v = 0; v < he.num_vertices(); ++v) free[v] = he.is_boundary_vertex(v) ? 0 : 1;
     for (Operator op : kOperators)
-        for (int order : {2}) {
+        for (int order : {1, 2}) {
             SCOPED_TRACE(testing::Message() << fairing::to_string(op) << " order " << order);
             Options o = frozen(op, order, 3.0, 3);
             o.preserve_volume = true;  // nothing to restore on an open component (None)
@@ -169,26 +181,30 @@ Positions centred(const Positions& x) {
     return x.rowwise() - 0.5 * (x.colwise().minCoeff() + x.colwise().maxCoeff());
 }
 
-// Soft constraints (section 2.7): D = M / w. The L^2 system then no longer factors over the
-// complex numbers, the Krylov space would be the L^2 operator's, and fair() takes the steps one
-// by one; the process itself is checked on the same systems below.
-TEST(FrozenSteps, SoftWeightsOneByOne) {
+// Soft constraints (section 2.7): D = M / w. First order: the same process. The L^2 system no
+// longer factors over the complex numbers, the Krylov space would be the L^2 operator's, and
+// fair() takes those steps one by one; the process itself is checked on them below.
+TEST(FrozenSteps, SoftWeights) {
     const TriangleMesh m = lumpy_sphere();
     const HalfEdgeMesh he = HalfEdgeMesh::build(m.positions, m.triangles);
     fairing::Constraints constraints;
     for (int i = 0; i < m.positions.rows(); ++i)
         constraints.weights.push_back(i % 7 == 0 ? 0.0 : 0.2 + 0.8 * ((i * 37) % 11) / 10.0);
-    const Options o = frozen(Operator::CurvatureFlow, 2, 2.0, 3);
-    const fairing::Result r = fairing::fair(m, constraints, o);
-    expect_one_by_one(r, 3);
-    const SparseOperator k0 = fairing::assemble(Operator::CurvatureFlow, he, m.positions);
-    const Positions x =
-        dense_steps(he, k0, m.positions, r.lambda_dt, 2, 3, false, constraints.weights);
-    EXPECT_LT(meshes::max_row_distance(r.positions, x), 1e-9);
+    for (int order : {1, 2}) {
+        SCOPED_TRACE(testing::Message() << "order " << order);
+        const Options o = frozen(Operator::CurvatureFlow, order, 2.0, 3);
+        const fairing::Result r = fairing::fair(m, constraints, o);
+        if (order == 1) expect_at_once(r, 3);
+        else expect_one_by_one(r, 3);
+        const SparseOperator k0 = fairing::assemble(Operator::CurvatureFlow, he, m.positions);
+        const Positions x =
+            dense_steps(he, k0, m.positions, r.lambda_dt, order, 3, false, constraints.weights);
+        EXPECT_LT(meshes::max_row_distance(r.positions, x), 1e-9);
+    }
 }
 
-// The general process (Krylov space of G = D^-1/2 C D^-1/2 itself), which fair() does not
-// choose: first order, and soft weights with either order, fixed rows (weight 0) included.
+// The process on its own, on the systems fair() leaves to the steps one by one too (soft
+// weights with L^2), fixed rows (weight 0) included.
 TEST(FrozenSteps, GeneralProcessWithSoftWeights) {
     const TriangleMesh m = lumpy_sphere();
     const HalfEdgeMesh he = HalfEdgeMesh::build(m.positions, m.triangles);
