@@ -11,7 +11,6 @@
 #include <array>
 #include <cmath>
 #include <complex>
-#include <memory>
 
 namespace fairing {
 namespace detail {
@@ -84,16 +83,21 @@ double distance(const std::vector<double>& a, const std::vector<double>& b) {
 
 double norm(const std::vector<double>& a) { return distance(a, {}); }
 
-// What the second pass adds up: acc += c_j z_j, and kept[m] += c^(m+1)_j z_j (m = 0..s-2,
-// interleaved per vertex) while j < end[m]: fewer steps describe the smoother filters of
-// fewer steps (their coefficients decay sooner), and skipping their tails saves memory traffic.
+// What the second pass adds up: acc += c_j z_j, and for the intermediate results X_{m+1}
+// (m = 0..s-2, interleaved per vertex) either
+// - single precision (first choice: half the memory and traffic), the differences
+//   kept[m] += (c^(m+1)_j - c_j) z_j, so that X_{m+1} = X_s - kept[m] is rounded relative to
+//   |X_{m+1} - X_s|, not to the positions; or
+// - double precision, kept[m] += c^(m+1)_j z_j while j < end[m] (X_{m+1} = x_0 - kept[m]):
+//   fewer steps filter more smoothly and their coefficients decay sooner.
 struct Accumulation {
     std::array<const std::vector<double>*, 3> final{};
     std::array<const std::vector<std::vector<double>>*, 3> partial{};
     Positions* acc = nullptr;
     std::vector<double>* kept = nullptr;
+    std::vector<float>* kept_single = nullptr;
     int kept_steps = 0;
-    std::vector<int> end;  // increasing in m
+    std::vector<int> end;  // double precision only; increasing in m
     // Step j's coefficients, [c] for acc and [3 (m + 1) + c] for kept[m], set by at(), and the
     // first kept[m] still accumulating.
     std::vector<double> step;
@@ -101,13 +105,14 @@ struct Accumulation {
 
     void at(int j) {
         step.assign(3 * (kept_steps + 1), 0.0);
-        while (first < kept_steps && j >= end[first]) ++first;
+        while (!kept_single && first < kept_steps && j >= end[first]) ++first;
         for (int c = 0; c < 3; ++c) {
             const std::vector<double>& f = *final[c];
             step[c] = j < static_cast<int>(f.size()) ? f[j] : 0.0;
+            const double minus = kept_single ? step[c] : 0.0;
             for (int m = first; m < kept_steps; ++m) {
                 const std::vector<double>& p = (*partial[c])[m];
-                step[3 * (m + 1) + c] = j < static_cast<int>(p.size()) ? p[j] : 0.0;
+                step[3 * (m + 1) + c] = (j < static_cast<int>(p.size()) ? p[j] : 0.0) - minus;
             }
         }
     }
@@ -196,7 +201,8 @@ private:
         const Column3 beta = previous_;
         const double* step = acc ? acc->step.data() : nullptr;
         double* sum = acc ? acc->acc->data() : nullptr;
-        double* kept = acc ? acc->kept->data() : nullptr;
+        double* kept = acc && acc->kept ? acc->kept->data() : nullptr;
+        float* single = acc && acc->kept_single ? acc->kept_single->data() : nullptr;
         const int kept_columns = acc ? 3 * acc->kept_steps : 0;
         return blocked_sum<3>(n, system_.op->threads, [&](int i, double* s) {
             if (!f[i]) return;
@@ -211,6 +217,15 @@ private:
             }
             if (!step) return;
             for (int c = 0; c < 3; ++c) sum[3 * i + c] += step[c] * z[c];
+            if (single) {
+                float* k = single + static_cast<std::size_t>(i) * kept_columns;
+                for (int e = 0; e < kept_columns; e += 3) {
+                    k[e] += static_cast<float>(step[3 + e] * z[0]);
+                    k[e + 1] += static_cast<float>(step[4 + e] * z[1]);
+                    k[e + 2] += static_cast<float>(step[5 + e] * z[2]);
+                }
+                return;
+            }
             double* k = kept + static_cast<std::size_t>(i) * kept_columns;
             for (int e = 3 * acc->first; e < kept_columns; e += 3) {
                 k[e] += step[3 + e] * z[0];
@@ -303,17 +318,23 @@ FirstPass first_pass(const FrozenProblem& p, Lanczos& lanczos, const Positions& 
 struct Rescaling {
     double a = 1;
     Vec3 delta = Vec3::Zero();
-    // Rounding of delta: each X_k carries ~kRounding |X_k - X_s| (blocked sums of double
-    // products), times |a_{k-1} - a_k|.
+    // Rounding of delta: that of each X_k (intermediate()) times |a_{k-1} - a_k|.
     double rounding = 0;
 };
 
 constexpr double kRounding = 1e-14;
 
-// X_k = x_0 - kept[k-1] on the free rows, into `work` (whose other rows hold x_0 = X_s);
-// returns the largest entry of kept[k-1], which scales its rounding.
-double intermediate(const FrozenProblem& p, const std::vector<double>& kept, int k,
-                    const Positions& x0, Positions& work) {
+// The intermediate results, as the second pass kept them (see Accumulation).
+struct Kept {
+    const std::vector<double>* doubles = nullptr;
+    const std::vector<float>* singles = nullptr;
+    int lanczos_steps = 0;
+};
+
+// X_k into `work` (whose other rows hold x_0 = X_s) from x_0 (double) or X_s (single); returns
+// the rounding of the largest entry of the kept vector (the rounding of X_k).
+double intermediate(const FrozenProblem& p, const Kept& kept, int k, const Positions& x0,
+                    const Positions& xs, Positions& work) {
     const int n = static_cast<int>(x0.rows());
     const int m = p.steps - 1;
     const char* f = p.system->free.data();
@@ -321,11 +342,14 @@ double intermediate(const FrozenProblem& p, const std::vector<double>& kept, int
     for (int i = 0; i < n; ++i)
         if (f[i])
             for (int c = 0; c < 3; ++c) {
-                const double d = kept[(static_cast<std::size_t>(i) * m + k - 1) * 3 + c];
-                work(i, c) = x0(i, c) - d;
+                const std::size_t e = (static_cast<std::size_t>(i) * m + k - 1) * 3 + c;
+                const double d = kept.singles ? (*kept.singles)[e] : (*kept.doubles)[e];
+                work(i, c) = (kept.singles ? xs(i, c) : x0(i, c)) - d;
                 largest = std::max(largest, std::abs(d));
             }
-    return largest;
+    // Double: ~1e-14 relative (sums of double products). Single: each of the Lanczos steps'
+    // terms rounded to 2^-24, partial sums up to a few times the total.
+    return largest * (kept.singles ? 4.0 * kept.lanczos_steps * 0x1p-24 : kRounding);
 }
 
 // Scale a_k and centroid g_k of X_k for one component; false if its measure is not positive.
@@ -342,8 +366,10 @@ bool measure(const FrozenProblem& p, std::size_t c, const Positions& x, double& 
 
 // X_s = x_0 - acc, rescaled as the steps one by one would. False (x untouched) when a measure
 // stops being positive or the rounding of the replay could exceed a tenth of the tolerance.
-bool restore_at_end(const FrozenProblem& p, const Positions& acc, const std::vector<double>& kept,
-                    Positions& x) {
+enum class Restored { Yes, NotPositive, Rounding };
+
+Restored restore_at_end(const FrozenProblem& p, const Positions& acc, const Kept& kept,
+                        Positions& x) {
     const int s = p.steps;
     const char* f = p.system->free.data();
     const auto& components = p.mesh->components();
@@ -354,18 +380,18 @@ bool restore_at_end(const FrozenProblem& p, const Positions& acc, const std::vec
     std::vector<Rescaling> r(count);
     std::vector<Vec3> g(count);
     for (std::size_t c = 0; c < count; ++c)
-        if (!measure(p, c, shape, r[c].a, g[c])) return false;
+        if (!measure(p, c, shape, r[c].a, g[c])) return Restored::NotPositive;
     Positions work = count > 0 ? shape : Positions();
     std::vector<double> a_previous(count, 1.0);  // a_0 = 1
     for (int k = 1; k < s && count > 0; ++k) {
-        const double largest = intermediate(p, kept, k, x, work);
+        const double rounding = intermediate(p, kept, k, x, shape, work);
         for (std::size_t c = 0; c < count; ++c) {
             double a;
             Vec3 centroid;
-            if (!measure(p, c, work, a, centroid)) return false;
+            if (!measure(p, c, work, a, centroid)) return Restored::NotPositive;
             const double step = a_previous[c] - a;
             r[c].delta += step * (centroid - g[c]);
-            r[c].rounding += std::abs(step) * kRounding * largest;
+            r[c].rounding += std::abs(step) * rounding;
             a_previous[c] = a;
         }
     }
@@ -376,11 +402,37 @@ bool restore_at_end(const FrozenProblem& p, const Positions& acc, const std::vec
             size = std::max(size, (y - g[c]).norm());
             shape.row(v) = y.transpose();
         }
-        if (!(r[c].rounding <= 0.1 * p.tolerance * size)) return false;
+        if (!(r[c].rounding <= 0.1 * p.tolerance * size)) return Restored::Rounding;
     }
-    if (!shape.allFinite()) return false;
+    if (!shape.allFinite()) return Restored::NotPositive;
     x.swap(shape);
-    return true;
+    return Restored::Yes;
+}
+
+}  // namespace
+
+namespace {
+
+// The second pass: replays the basis and returns x_0 - X_s in `sum`, the intermediate results in
+// single or double precision as asked (see Accumulation).
+void second_pass(const FrozenProblem& p, const FirstPass& first, Accumulation& acc, bool squared,
+                 const Positions& x, Positions& sum, std::vector<double>& kept,
+                 std::vector<float>& kept_single, bool single) {
+    const std::size_t size = static_cast<std::size_t>(x.rows()) * 3 * acc.kept_steps;
+    sum.setZero(x.rows(), 3);
+    if (single) kept_single.assign(size, 0.0f);
+    else kept.assign(size, 0.0);
+    acc.acc = &sum;
+    acc.kept = single || acc.kept_steps == 0 ? nullptr : &kept;
+    acc.kept_single = single ? &kept_single : nullptr;
+    acc.first = 0;
+    Lanczos lanczos(*p.system, squared);
+    lanczos.start(x);
+    for (int j = 0; j < first.steps; ++j) {
+        acc.at(j);
+        lanczos.step(&acc);
+        if (p.progress) p.progress(0.5 + 0.5 * (j + 1) / first.steps);
+    }
 }
 
 }  // namespace
@@ -388,8 +440,11 @@ bool restore_at_end(const FrozenProblem& p, const Positions& acc, const std::vec
 FrozenOutcome take_frozen_steps(const FrozenProblem& p, Positions& x) {
     FrozenOutcome outcome;
     const bool squared = complex_factor_applies(*p.system);
-    auto lanczos = std::make_unique<Lanczos>(*p.system, squared);
-    const FirstPass first = first_pass(p, *lanczos, x, squared);
+    FirstPass first;
+    {
+        Lanczos lanczos(*p.system, squared);  // its vectors go before the second pass's
+        first = first_pass(p, lanczos, x, squared);
+    }
     outcome.lanczos_steps = first.steps;
     outcome.products = first.steps + 1;
     outcome.error = first.error;
@@ -408,29 +463,31 @@ FrozenOutcome take_frozen_steps(const FrozenProblem& p, Positions& x) {
         acc.final[c] = &final[c];
         acc.partial[c] = &partial[c];
     }
-    Positions sum = Positions::Zero(x.rows(), 3);
-    // kept[m] to the accuracy of the result: its error enters x_s only multiplied by a
-    // difference of two rescalings.
+    acc.kept_steps = kept_steps;
+    // Double precision: kept[m] to the accuracy of the result, as its error enters x_s only
+    // multiplied by a difference of two rescalings.
     acc.end.assign(kept_steps, 0);
     for (int m = 0; m < kept_steps; ++m)
         for (int c = 0; c < 3; ++c)
             acc.end[m] = std::max(acc.end[m], prefix(partial[c][m], kSafety * p.tolerance *
                                                                         first.scale[c]));
     for (int m = 1; m < kept_steps; ++m) acc.end[m] = std::max(acc.end[m], acc.end[m - 1]);
-    std::vector<double> kept(static_cast<std::size_t>(x.rows()) * 3 * kept_steps, 0.0);
-    acc.acc = &sum;
-    acc.kept = &kept;
-    acc.kept_steps = kept_steps;
-    lanczos->start(x);
-    for (int j = 0; j < first.steps; ++j) {
-        acc.at(j);
-        lanczos->step(&acc);
-        if (p.progress) p.progress(0.5 + 0.5 * (j + 1) / first.steps);
+    Positions sum;
+    std::vector<double> kept;
+    std::vector<float> kept_single;
+    // Single precision first; again in double when its rounding could reach the tolerance.
+    for (bool single = kept_steps > 0;; single = false) {
+        second_pass(p, first, acc, squared, x, sum, kept, kept_single, single);
+        outcome.products += first.steps + 1;
+        Kept k;
+        k.doubles = &kept;
+        k.singles = single ? &kept_single : nullptr;
+        k.lanczos_steps = first.steps;
+        const Restored restored = restore_at_end(p, sum, k, x);
+        outcome.taken = restored == Restored::Yes;
+        if (restored != Restored::Rounding || !single) return outcome;
+        kept_single = std::vector<float>();
     }
-    outcome.products += first.steps + 1;
-    lanczos.reset();  // its vectors are not needed any more: keep the peak down
-    outcome.taken = restore_at_end(p, sum, kept, x);
-    return outcome;
 }
 
 }  // namespace detail
