@@ -302,14 +302,15 @@ LinearSystem Run::system_for(const SparseOperator& op, const std::vector<char>& 
 // the steps one by one with fairing-bench-tool, one thread, process CPU seconds, 10 frozen steps
 // (bench/results/issue12/frozen.md):
 // - L^2 without soft weights, automatic preconditioner (the filters' defaults; the Krylov space
-//   is that of the first-order operator): curvature L^2 at 22.5, 12.0 s against 37.2 s on the
-//   1.2 M-face bunny and 8.8 s against 25.7 s on a 1 M-face torus (one step: 5.1 s, 5.5 s);
-//   umbrella L^2 at 10, 2.7 s against 7.3 s and 2.1 s against 5.4 s.
+//   is that of the first-order operator): curvature L^2 at 22.5, 11.0 s against 38.3 s on the
+//   1.2 M-face bunny and 7.6 s against 25.7 s on a 1 M-face torus (one step: 5.0 s, 5.5 s);
+//   umbrella L^2 at 10, 2.6 s against 7.5 s and 1.8 s against 5.1 s.
 // - First order when no component is rescaled (open components, volume off): curvature L at
-//   4.74, 7.4 s against 8.8 s (bunny) and 5.5 s against 9.3 s (torus). With rescaling, 10 steps
+//   4.74, 7.3 s against 8.5 s (bunny) and 4.7 s against 8.2 s (torus). With rescaling, 10 steps
 //   of lambda need about as many Lanczos steps as one of 10 lambda and the intermediate results
 //   the rescaling needs make the second pass dearer: 10.3 s against 9.3 s on the bunny (7.5 s
-//   against 9.5 s on the torus), so those stay one by one.
+//   against 9.5 s on the torus; with those results in double precision), so those stay one by
+//   one.
 // - L^2 with soft weights: the Krylov space would be the L^2 operator's, unpreconditioned; not
 //   measured, expected slower than the steps' preconditioned solves: one by one.
 // The process is the same filter as the steps one by one only with implicit steps on one system
@@ -318,7 +319,7 @@ LinearSystem Run::system_for(const SparseOperator& op, const std::vector<char>& 
 // with it up to a translation the process replays) or not moving; a normal offset (fixed
 // vertices) is not linear. Anywhere else, or when the Lanczos process gives up, the steps are
 // taken one by one as before (false, x_ untouched). A rescaled run keeps the intermediate
-// results, 24 bytes per vertex and step, hence the cap.
+// results, 12 bytes per vertex and step (24 when single precision is not enough), hence the cap.
 bool Run::take_frozen_steps(double lambda_dt, int steps) {
     constexpr int kMaxRescaledSteps = 17;
     if (options_.integration != Integration::Implicit || options_.norm != ResidualNorm::L2 ||

@@ -30,7 +30,7 @@
 // result: one solve to `tolerance` guarantees that bound, as A >= D) between checks 4 Lanczos
 // steps apart; the second recomputes the same basis bit for bit (the same arithmetic on the
 // same data) and accumulates V_k phi(T_k) e1. The basis is never stored: four n x 3 arrays
-// (96 bytes per vertex) and the sum, plus 24 (s - 1) bytes per vertex when the intermediate
+// (96 bytes per vertex) and the sum, plus 12 (s - 1) bytes per vertex when the intermediate
 // results are wanted (volume restoration, below). Every sum is blocked (kernels.h), so the
 // result is bit-identical for any number of threads.
 //
@@ -41,13 +41,18 @@
 // centroid of X_k and delta = sum_k (a_{k-1} - a_k) (g_k - g_s) (a_0 = 1). The scale depends on
 // X_s alone, but delta needs every X_k (smoothing moves the centroid of an asymmetric solid:
 // restoring once at the end is off by delta, 1e-6 to 1e-4 of the radius on the tests' lumpy
-// sphere), so the second pass also accumulates X_1..X_{s-1} (each only until its coefficients'
-// tail is below the goal: fewer steps filter more smoothly and converge sooner). Their volumes
-// and centroids are then measured on the mesh, s - 1 sweeps over its faces.
+// sphere), so the second pass also accumulates X_1..X_{s-1}: in single precision, as their
+// differences from X_s (so rounded relative to |X_k - X_s|, and entering delta only multiplied
+// by a_{k-1} - a_k), or, when that rounding could exceed a tenth of the tolerance (strong
+// shrinkage, tolerances near 1e-12), in double precision by a second try of the second pass
+// (24 (s - 1) bytes per vertex). Their volumes and centroids are then measured on the mesh,
+// s - 1 sweeps over its faces. When even double precision could exceed it (a solid collapsing
+// under a huge step) the process gives up.
 //
 // The caller decides when this applies (fairing.cpp); here the process gives up (x untouched,
-// FrozenOutcome::taken false) when it does not converge within max_iterations Lanczos steps or
-// a restored measure stops being positive, and the caller then takes the steps one by one.
+// FrozenOutcome::taken false) when it does not converge within max_iterations Lanczos steps, a
+// restored measure stops being positive or its replay is too inexact (above), and the caller
+// then takes the steps one by one.
 #pragma once
 
 #include "fairing/half_edge.h"
