@@ -364,8 +364,9 @@ bool measure(const FrozenProblem& p, std::size_t c, const Positions& x, double& 
     return true;
 }
 
-// X_s = x_0 - acc, rescaled as the steps one by one would. False (x untouched) when a measure
-// stops being positive or the rounding of the replay could exceed a tenth of the tolerance.
+// X_s = x_0 - acc, rescaled as the steps one by one would, into x; x is untouched when a
+// measure stops being positive or the rounding of the replay could exceed a tenth of the
+// tolerance.
 enum class Restored { Yes, NotPositive, Rounding };
 
 Restored restore_at_end(const FrozenProblem& p, const Positions& acc, const Kept& kept,
@@ -408,10 +409,6 @@ Restored restore_at_end(const FrozenProblem& p, const Positions& acc, const Kept
     x.swap(shape);
     return Restored::Yes;
 }
-
-}  // namespace
-
-namespace {
 
 // The second pass: replays the basis and returns x_0 - X_s in `sum`, the intermediate results in
 // single or double precision as asked (see Accumulation).
