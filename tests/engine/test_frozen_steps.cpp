@@ -295,3 +295,54 @@ TEST(FrozenSteps, TwoThreadsGiveTheSameBits) {
         EXPECT_EQ(one.total_iterations, two.total_iterations);
     }
 }
+
+// Virtual-vertex boundaries (section 5.3): the hidden vertices are unknowns of the same system,
+// so the steps are still one filter. Checked against the steps one by one, which the Jacobi
+// preconditioner asks for (the frozen path is the automatic solver's).
+TEST(FrozenSteps, VirtualVerticesAgreeWithTheStepsOneByOne) {
+    const TriangleMesh m = meshes::noisy_open_grid(12, 0.2, 0.3);
+    for (Operator op : kOperators) {
+        SCOPED_TRACE(fairing::to_string(op));
+        Options o = frozen(op, 2, 3.0, 3);
+        o.boundary = fairing::BoundaryMode::VirtualVertex;
+        const fairing::Result at_once = fairing::fair(m, {}, o);
+        expect_at_once(at_once, 3);
+        o.preconditioner = fairing::Preconditioner::Jacobi;
+        const fairing::Result one_by_one = fairing::fair(m, {}, o);
+        expect_one_by_one(one_by_one, 3);
+        EXPECT_LT(meshes::max_row_distance(at_once.positions, one_by_one.positions), 1e-9);
+        EXPECT_GT(meshes::max_row_distance(at_once.positions, m.positions), 1e-3);
+    }
+}
+
+// The smooth boundary curve is a second system solved before each step: one by one.
+TEST(FrozenSteps, SmoothBoundaryCurveOneByOne) {
+    const TriangleMesh m = meshes::noisy_open_grid(12, 0.2, 0.3);
+    Options o = frozen(Operator::CurvatureFlow, 2, 3.0, 3);
+    o.boundary = fairing::BoundaryMode::SmoothCurve;
+    const fairing::Result r = fairing::fair(m, {}, o);
+    ASSERT_EQ(r.solves.size(), 6u);  // curve and surface, three times
+    for (const auto& s : r.solves) EXPECT_EQ(s.frozen_steps, 0);
+}
+
+// Two closed components, each rescaled about its own centroid after every step.
+TEST(FrozenSteps, TwoComponentsKeepTheirOwnVolume) {
+    const TriangleMesh m = meshes::merge(
+        lumpy_sphere(), meshes::translated(meshes::scaled(meshes::radial_noise(
+                                                              meshes::icosphere(2), 0.1, 8),
+                                                          0.5),
+                                           fairing::Vec3(3, 0.5, 0)));
+    Options o = frozen(Operator::CurvatureFlow, 2, 6.0, 4);
+    o.preserve_volume = true;
+    const fairing::Result at_once = fairing::fair(m, {}, o);
+    expect_at_once(at_once, 4);
+    ASSERT_EQ(at_once.components.size(), 2u);
+    for (const auto& c : at_once.components) {
+        EXPECT_EQ(c.restoration, fairing::Restoration::Scale);
+        EXPECT_NEAR(c.measure_after, c.measure_before, 1e-12 * c.measure_before);
+    }
+    o.preconditioner = fairing::Preconditioner::Jacobi;
+    const fairing::Result one_by_one = fairing::fair(m, {}, o);
+    expect_one_by_one(one_by_one, 4);
+    EXPECT_LT(meshes::max_row_distance(at_once.positions, one_by_one.positions), 1e-9);
+}
