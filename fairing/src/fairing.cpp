@@ -308,9 +308,8 @@ LinearSystem Run::system_for(const SparseOperator& op, const std::vector<char>& 
 // - First order when no component is rescaled (open components, volume off): curvature L at
 //   4.74, 7.3 s against 8.5 s (bunny) and 4.7 s against 8.2 s (torus). With rescaling, 10 steps
 //   of lambda need about as many Lanczos steps as one of 10 lambda and the intermediate results
-//   the rescaling needs make the second pass dearer: 10.3 s against 9.3 s on the bunny (7.5 s
-//   against 9.5 s on the torus; with those results in double precision), so those stay one by
-//   one.
+//   the rescaling needs make the second pass dearer: 9.0 s against 8.0 s on the bunny (7.0 s
+//   against 10.5 s on the torus), so those stay one by one.
 // - L^2 with soft weights: the Krylov space would be the L^2 operator's, unpreconditioned; not
 //   measured, expected slower than the steps' preconditioned solves: one by one.
 // The process is the same filter as the steps one by one only with implicit steps on one system
