@@ -102,6 +102,9 @@ struct Options {
     int steps = 1;
     // Section 4.3: keep the coefficients of the first step for all steps (smoothing "relative to
     // the initial mesh"). Off: coefficients are recomputed from the current mesh at each step.
+    // The umbrella's never change. Implicit steps on a frozen operator are one linear filter and
+    // are taken at once where measured cheaper (the defaults' L^2 steps; src/frozen_steps.h):
+    // the same result to the tolerance, one SolveReport for all of them.
     bool freeze_operator = false;
     // Explicit integration only: use the normalized operators of section 5.5 (eigenvalues of L
     // in [-2, 0], so time_step is dimensionless and up to 1 is stable).
