@@ -353,7 +353,14 @@ void FilterImplicitFairing::logSolves(const fairing::Result& r)
         logLine(QString("Time step: %1 (given)").arg(num(r.time_step)));
     logLine(QString::fromUtf8("Steps: %1; absolute λdt per step: %2 (time step %3)")
                 .arg(r.steps).arg(num(r.lambda_dt)).arg(num(r.time_step)));
-    for (const fairing::SolveReport& s : r.solves)
+    for (const fairing::SolveReport& s : r.solves) {
+        if (s.frozen_steps > 0) {  // one report for all the steps (the engine's frozen_steps.h)
+            logLine(QString("  steps 1-%1 at once (frozen operator), %2: %3 products with the "
+                            "system (two Lanczos passes), estimated error %4")
+                        .arg(s.frozen_steps).arg(QString::fromStdString(s.system))
+                        .arg(s.iterations).arg(num(s.residual)));
+            continue;
+        }
         logLine(QString("  step %1, %2: %3 CG iterations%4, residual %5%6")
                     .arg(s.step).arg(QString::fromStdString(s.system)).arg(s.iterations)
                     .arg(s.factored ? QString(" (factored L² preconditioner: %1 inner "
@@ -361,6 +368,7 @@ void FilterImplicitFairing::logSolves(const fairing::Result& r)
                                           .arg(s.inner_iterations)
                                     : QString())
                     .arg(num(s.residual)).arg(s.converged ? "" : " (NOT converged)"));
+    }
     logLine(QString("CG iterations in total: %1; largest final residual: %2")
                 .arg(r.total_iterations).arg(num(r.max_residual)));
 }

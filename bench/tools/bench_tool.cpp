@@ -120,13 +120,15 @@ int main(int argc, char** argv) {
             if (std::string(argv[6]) == "auto") o.time_step.reset();  // automatic strength
             else o.time_step = std::atof(argv[6]);
             o.steps = argc > 7 ? std::atoi(argv[7]) : 1;
-            // Optional after STEPS: threads=N, preconditioner=auto|jacobi|factored, freeze=0|1.
+            // Optional after STEPS: threads=N, preconditioner=auto|jacobi|factored, freeze=0|1,
+            // volume=0|1 (Options::preserve_volume, default 1).
             for (int k = 8; k < argc; ++k) {
                 const std::string kv = argv[k];
                 const std::size_t eq = kv.find('=');
                 const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
                 if (key == "threads") o.threads = std::atoi(value.c_str());
                 else if (key == "freeze") o.freeze_operator = value == "1";
+                else if (key == "volume") o.preserve_volume = value == "1";
                 else if (key == "preconditioner")
                     o.preconditioner = value == "jacobi" ? fairing::Preconditioner::Jacobi
                                      : value == "factored" ? fairing::Preconditioner::Factored

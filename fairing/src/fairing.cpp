@@ -7,6 +7,8 @@
 #include "fairing/operators.h"
 #include "fairing/solver.h"
 #include "auto_strength.h"
+#include "complex_factor.h"
+#include "frozen_steps.h"
 #include "geometry.h"
 #include "kernels.h"
 #include "vertex_order.h"
@@ -149,6 +151,9 @@ private:
     std::vector<char> surface_free() const;
     void choose_time_step();
     void take_steps();
+    bool take_frozen_steps(double lambda_dt, int steps);
+    LinearSystem system_for(const SparseOperator& op, const std::vector<char>& free,
+                            double lambda_dt) const;
     void finish(const Eigen::RowVector3d& origin);
     void warn_about_input();
     void integrate(const SparseOperator& op, const std::vector<char>& free, double lambda_dt,
@@ -264,15 +269,7 @@ void Run::integrate(const SparseOperator& op, const std::vector<char>& free, dou
         result_.solves.push_back(report);
         return;
     }
-    const int n = op.size();
-    LinearSystem linear;
-    linear.op = &op;
-    linear.free = free;
-    linear.lambda_dt = lambda_dt;
-    linear.order = options_.order;
-    linear.diagonal.assign(n, 1.0);
-    for (int i = 0; i < n; ++i)
-        if (free[i]) linear.diagonal[i] = op.mass[i] / (i < n_ ? weight_[i] : 1.0);
+    const LinearSystem linear = system_for(op, free, lambda_dt);
     SolveSettings settings;
     settings.tolerance = options_.tolerance;
     settings.norm = options_.norm;
@@ -285,6 +282,95 @@ void Run::integrate(const SparseOperator& op, const std::vector<char>& free, dou
         };
     }
     record(solve(linear, x_, settings), step, system);
+}
+
+LinearSystem Run::system_for(const SparseOperator& op, const std::vector<char>& free,
+                             double lambda_dt) const {
+    const int n = op.size();
+    LinearSystem linear;
+    linear.op = &op;
+    linear.free = free;
+    linear.lambda_dt = lambda_dt;
+    linear.order = options_.order;
+    linear.diagonal.assign(n, 1.0);
+    for (int i = 0; i < n; ++i)
+        if (free[i]) linear.diagonal[i] = op.mass[i] / (i < n_ ? weight_[i] : 1.0);
+    return linear;
+}
+
+// Steps with a frozen operator taken at once (src/frozen_steps.h), where measured cheaper than
+// the steps one by one with fairing-bench-tool, one thread, process CPU seconds, 10 frozen steps
+// (bench/results/issue12/frozen.md):
+// - L^2 without soft weights, automatic preconditioner (the filters' defaults; the Krylov space
+//   is that of the first-order operator): curvature L^2 at 22.5, 11.0 s against 38.3 s on the
+//   1.2 M-face bunny and 7.6 s against 25.7 s on a 1 M-face torus (one step: 5.0 s, 5.5 s);
+//   umbrella L^2 at 10, 2.6 s against 7.5 s and 1.8 s against 5.1 s.
+// - First order when no component is rescaled (open components, volume off): curvature L at
+//   4.74, 7.3 s against 8.5 s (bunny) and 4.7 s against 8.2 s (torus). With rescaling, 10 steps
+//   of lambda need about as many Lanczos steps as one of 10 lambda and the intermediate results
+//   the rescaling needs make the second pass dearer: 9.0 s against 8.0 s on the bunny (7.0 s
+//   against 10.5 s on the torus), so those stay one by one.
+// - L^2 with soft weights: the Krylov space would be the L^2 operator's, unpreconditioned; not
+//   measured, expected slower than the steps' preconditioned solves: one by one.
+// The process is the same filter as the steps one by one only with implicit steps on one system
+// (no boundary curve first), the L2 stopping rule, and every restored component either rescaled
+// whole (all its vertices free: the filter then keeps constants on it and the rescaling commutes
+// with it up to a translation the process replays) or not moving; a normal offset (fixed
+// vertices) is not linear. Anywhere else, or when the Lanczos process gives up, the steps are
+// taken one by one as before (false, x_ untouched). A rescaled run keeps the intermediate
+// results, 12 bytes per vertex and step (24 when single precision is not enough), hence the cap.
+bool Run::take_frozen_steps(double lambda_dt, int steps) {
+    constexpr int kMaxRescaledSteps = 17;
+    if (options_.integration != Integration::Implicit || options_.norm != ResidualNorm::L2 ||
+        options_.preconditioner != Preconditioner::Automatic)
+        return false;
+    const std::vector<char> free = surface_free();
+    detail::FrozenProblem problem;
+    std::vector<int> unchanged;
+    const auto& components = he_.components();
+    for (std::size_t c = 0; c < components.size(); ++c) {
+        if (target_[c] == 0) continue;
+        std::size_t movable = 0, moving = 0;
+        for (int v : components[c].vertices) {
+            movable += restorable_[v] ? 1 : 0;
+            moving += restorable_[v] && free[v] ? 1 : 0;
+        }
+        if (movable == 0) {
+            unchanged.push_back(static_cast<int>(c));
+            continue;
+        }
+        // In virtual-vertex mode a loop's hidden vertex would not be rescaled with the loop.
+        if (moving != components[c].vertices.size() || (virtual_mode_ && !components[c].closed()))
+            return false;
+        problem.rescaled.push_back(static_cast<int>(c));
+        problem.target.push_back(target_[c]);
+    }
+    if (!problem.rescaled.empty() && steps > kMaxRescaledSteps) return false;
+    const LinearSystem system = system_for(surface_, free, lambda_dt);
+    const bool first_order_unscaled = options_.order == 1 && problem.rescaled.empty();
+    if (!first_order_unscaled && !detail::complex_factor_applies(system)) return false;
+    problem.system = &system;
+    problem.steps = steps;
+    problem.tolerance = options_.tolerance;
+    problem.max_iterations = options_.max_iterations;
+    problem.mesh = &he_;
+    if (options_.progress) problem.progress = [this](double f) { report_progress(f); };
+    const detail::FrozenOutcome outcome = detail::take_frozen_steps(problem, x_);
+    if (!outcome.taken) return false;
+    SolveReport report;
+    report.system = "surface";
+    report.iterations = outcome.products;
+    report.residual = outcome.error;
+    report.frozen_steps = steps;
+    result_.solves.push_back(report);
+    result_.total_iterations += outcome.products;
+    result_.max_residual = std::max(result_.max_residual, outcome.error);
+    for (int c : problem.rescaled) result_.components[c].restoration = Restoration::Scale;
+    for (int c : unchanged) result_.components[c].restoration = Restoration::Unchanged;
+    for (int i = 0; i < n_; ++i) ever_free_[i] |= free[i];
+    result_.steps = steps;
+    report_progress(1.0);
+    return true;
 }
 
 void Run::restore() {
@@ -471,6 +557,7 @@ void Run::take_steps() {
     const bool recompute = options_.op != Operator::Umbrella && !options_.freeze_operator;
     const bool curve = options_.boundary == BoundaryMode::SmoothCurve && !he_.boundary_loops().empty();
     ever_free_.assign(n_, 0);
+    if (steps >= 2 && !recompute && !curve && take_frozen_steps(lambda_dt, steps)) return;
     for (int step = 0; step < steps; ++step) {
         if (step > 0 && recompute) assemble_surface();
         if (curve) {

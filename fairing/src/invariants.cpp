@@ -69,6 +69,11 @@ double component_area(const HalfEdgeMesh& mesh, const Component& component,
                    [&](int v) { return detail::row(positions, v); });
 }
 
+Vec3 component_centroid(const HalfEdgeMesh& mesh, const Component& component,
+                        const Positions& positions) {
+    return centroid(mesh, component, component.closed(), positions);
+}
+
 Restoration restore_measure(const HalfEdgeMesh& mesh, const Component& component,
                             const std::vector<char>& free, double target, Positions& x) {
     const bool volume = component.closed();

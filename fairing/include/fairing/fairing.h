@@ -107,6 +107,9 @@ struct Options {
     int steps = 1;
     // Section 4.3: keep the coefficients of the first step for all steps (smoothing "relative to
     // the initial mesh"). Off: coefficients are recomputed from the current mesh at each step.
+    // The umbrella's never change. Implicit steps on a frozen operator are one linear filter and
+    // are taken at once where measured cheaper (the defaults' L^2 steps; src/frozen_steps.h):
+    // the same result to the tolerance, one SolveReport for all of them.
     bool freeze_operator = false;
     // Explicit integration only: use the normalized operators of section 5.5 (eigenvalues of L
     // in [-2, 0], so time_step is dimensionless and up to 1 is stable).
@@ -156,6 +159,11 @@ struct SolveReport {
     bool factored = false;  // the Factored preconditioner was used
     double residual = 0;   // max over x, y, z of ||A X - b|| / ||b|| in the chosen norm
     bool converged = true;
+    // > 0: this one report covers that many steps with a frozen operator, taken at once as a
+    // matrix function (src/frozen_steps.h); `iterations` then counts its products with the
+    // system (both Lanczos passes) and `residual` is the estimated error of the result relative
+    // to the positions (D-norm), which the steps' tolerance bounds.
+    int frozen_steps = 0;
 };
 
 enum class Restoration {

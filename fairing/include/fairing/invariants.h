@@ -18,6 +18,11 @@ double component_volume(const HalfEdgeMesh& mesh, const Component& component,
 double component_area(const HalfEdgeMesh& mesh, const Component& component,
                       const Positions& positions);
 
+// The centroid restore_measure scales about: of the enclosed solid (closed component) or of the
+// surface (open one).
+Vec3 component_centroid(const HalfEdgeMesh& mesh, const Component& component,
+                        const Positions& positions);
+
 // Restores `target` (volume for closed components, area for open ones) on one component.
 // Without fixed vertices: scales about the centroid (the solid's for volume, the surface's for
 // area) by (target/now)^(1/3) or ^(1/2). With fixed vertices: offsets every free vertex of the
