@@ -204,6 +204,47 @@ UpdateSums update_iterate(const LinearSystem& system, Positions& x, Positions& r
     return out;
 }
 
+// One CG update of the active columns: alpha = numerator / p.q, x += alpha p, r -= alpha q (with
+// inv: Jacobi's r.z rides on it, see update_iterate); columns that meet their goal stop, and
+// after_iteration sees the residuals.
+UpdateSums cg_update(const LinearSystem& system, Positions& x, Positions& r, const Positions& p,
+                     const Positions& q, const Column3& numerator, const Column3& pq,
+                     const Column3& goal, ResidualNorm norm, const double* inv, int done,
+                     std::array<bool, 3>& active, Column3& rn,
+                     const std::function<void(const Column3&)>& after_iteration) {
+    double alpha[3] = {0, 0, 0};
+    for (int c = 0; c < 3; ++c)
+        if (active[c]) {
+            alpha[c] = numerator[c] / pq[c];
+            check_finite(alpha[c], done);
+        }
+    const UpdateSums sums = update_iterate(system, x, r, p, q, alpha, norm, inv);
+    rn = sums.residual;
+    for (int c = 0; c < 3; ++c) {
+        check_finite(rn[c], done);
+        if (active[c] && rn[c] <= goal[c]) active[c] = false;
+    }
+    if (after_iteration) after_iteration(rn);
+    return sums;
+}
+
+// Fletcher-Reeves beta = rz_new / rz on the active columns (rz <- rz_new); keep = 1 where a
+// column stays put.
+void cg_beta(const Column3& rz_new, Column3& rz, const std::array<bool, 3>& active, int done,
+             double beta[3], double keep[3]) {
+    for (int c = 0; c < 3; ++c) {
+        beta[c] = 0;
+        keep[c] = 0;
+        if (active[c]) {
+            beta[c] = rz_new[c] / rz[c];
+            check_finite(beta[c], done);
+            rz[c] = rz_new[c];
+        } else {
+            keep[c] = 1;
+        }
+    }
+}
+
 // Iterations of Jacobi-preconditioned CG on the free rows, from x with r = b - A x (r zero on
 // fixed rows). Column c iterates while active[c], and stops once rn[c] <= goal[c]; at most
 // `cap` iterations (counted from `done`). Returns the iteration count reached.
@@ -225,38 +266,16 @@ int jacobi_cg(const LinearSystem& system, const double* inv, Positions& x, Posit
             a[c] += rs[3 * i + c] * ps[3 * i + c];
         }
     });
-    const auto converged = [&](int c) { return rn[c] <= goal[c]; };
 
     while (any(active) && done < cap) {
         ++done;
         const Column3 pq = system.apply_dot(p, q, scratch);
-        double alpha[3] = {0, 0, 0};
-        for (int c = 0; c < 3; ++c)
-            if (active[c]) {
-                alpha[c] = rz[c] / pq[c];
-                check_finite(alpha[c], done);
-            }
-        const UpdateSums sums = update_iterate(system, x, r, p, q, alpha, norm, inv);
-        rn = sums.residual;
-        for (int c = 0; c < 3; ++c) {
-            check_finite(rn[c], done);
-            if (active[c] && converged(c)) active[c] = false;
-        }
-        if (after_iteration) after_iteration(rn);
+        const UpdateSums sums = cg_update(system, x, r, p, q, rz, pq, goal, norm, inv, done,
+                                          active, rn, after_iteration);
         if (!any(active)) break;
         // p = J^-1 r + beta p on the columns still iterating.
-        const Column3& rz_new = sums.rz;
-        double beta[3] = {0, 0, 0};
-        double keep[3] = {0, 0, 0};  // 1 where the column stays put
-        for (int c = 0; c < 3; ++c) {
-            if (active[c]) {
-                beta[c] = rz_new[c] / rz[c];
-                check_finite(beta[c], done);
-                rz[c] = rz_new[c];
-            } else {
-                keep[c] = 1;
-            }
-        }
+        double beta[3], keep[3];
+        cg_beta(sums.rz, rz, active, done, beta, keep);
         FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1))
         for (int i = 0; i < n; ++i) {
             if (!f[i]) continue;
@@ -342,18 +361,8 @@ int factored_fcg(const LinearSystem& system, FactoredPreconditioner& preconditio
     while (any(active) && done < cap && *inner < inner_cap) {
         ++done;
         const Column3 pq = system.apply_dot(p, q, scratch);
-        double alpha[3] = {0, 0, 0};
-        for (int c = 0; c < 3; ++c)
-            if (active[c]) {
-                alpha[c] = pr[c] / pq[c];
-                check_finite(alpha[c], done);
-            }
-        rn = update_iterate(system, x, r, p, q, alpha, norm, nullptr).residual;
-        for (int c = 0; c < 3; ++c) {
-            check_finite(rn[c], done);
-            if (active[c] && rn[c] <= goal[c]) active[c] = false;
-        }
-        if (after_iteration) after_iteration(rn);
+        cg_update(system, x, r, p, q, pr, pq, goal, norm, nullptr, done, active, rn,
+                  after_iteration);
         if (!any(active)) break;
         *inner += preconditioner.apply(r, z, scratch);
         // p = z - (z.q / p.q) p: A-orthogonal to the previous direction even though B^-1 is
@@ -403,31 +412,11 @@ int multigrid_cg(const LinearSystem& system, detail::Multigrid& mg, Positions& x
     while (any(active) && done < cap) {
         ++done;
         const Column3 pq = system.apply_dot(p, q, z);
-        double alpha[3] = {0, 0, 0};
-        for (int c = 0; c < 3; ++c)
-            if (active[c]) {
-                alpha[c] = rz[c] / pq[c];
-                check_finite(alpha[c], done);
-            }
-        rn = update_iterate(system, x, r, p, q, alpha, norm, nullptr).residual;
-        for (int c = 0; c < 3; ++c) {
-            check_finite(rn[c], done);
-            if (active[c] && rn[c] <= goal[c]) active[c] = false;
-        }
-        if (after_iteration) after_iteration(rn);
+        cg_update(system, x, r, p, q, rz, pq, goal, norm, nullptr, done, active, rn,
+                  after_iteration);
         if (!any(active)) break;
-        const Column3 rz_new = precondition(r, z);
-        double beta[3] = {0, 0, 0};
-        double keep[3] = {0, 0, 0};
-        for (int c = 0; c < 3; ++c) {
-            if (active[c]) {
-                beta[c] = rz_new[c] / rz[c];
-                check_finite(beta[c], done);
-                rz[c] = rz_new[c];
-            } else {
-                keep[c] = 1;
-            }
-        }
+        double beta[3], keep[3];
+        cg_beta(precondition(r, z), rz, active, done, beta, keep);
         double* pw = p.data();
         const double* zs = z.data();
         detail::for_each_row(n, threads, [=](int i) {
