@@ -227,7 +227,7 @@ shot sphere-applied
 click_text sphere-applied "Close" "$dialog"
 wait_for "the dialog to close" 30 bash -c "! xdotool search --onlyvisible --name '^Implicit Fairing: Curvature Flow\$' | grep -q ."
 wait_for "the figures in the log pane" 30 find_text sphere-log "CG iterations in total:" \
-    "$(geometry "$main_title" | awk -F'[x+]' '{ printf "%dx%d+%d+%d", 450, $2, $3 + $1 - 450, $4 }')"
+    "$(geometry "$main_title" | awk -F'[x+]' '{ printf "%dx%d+%d+%d", 480, $2, $3 + $1 - 480, $4 }')"
 echo "the log pane shows the figures: $work/sphere-log.png"
 export_mesh "$work/exports/sphere-applied.ply"
 mltest moved "$work/exports/sphere-loaded.ply" "$work/exports/sphere-applied.ply" 0.5
