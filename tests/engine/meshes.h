@@ -450,6 +450,23 @@ inline double radius_spread(const Positions& p) {
     return (hi - lo) / (sum / static_cast<double>(p.rows()));
 }
 
+// A mesh with its half-edge view and one operator assembled at its positions (solver tests).
+struct Assembled {
+    TriangleMesh mesh;
+    fairing::HalfEdgeMesh he;
+    fairing::SparseOperator op;
+    double h = 0;  // mean edge length
+};
+
+inline Assembled assembled(const TriangleMesh& mesh, fairing::Operator op) {
+    Assembled c;
+    c.mesh = mesh;
+    c.he = fairing::HalfEdgeMesh::build(c.mesh.positions, c.mesh.triangles);
+    c.op = fairing::assemble(op, c.he, c.mesh.positions);
+    c.h = mean_edge_length(c.mesh.positions, c.mesh.triangles);
+    return c;
+}
+
 inline double bbox_diagonal(const Positions& p) {
     return (p.colwise().maxCoeff() - p.colwise().minCoeff()).norm();
 }

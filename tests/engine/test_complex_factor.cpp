@@ -23,20 +23,10 @@ using meshes::Positions;
 
 namespace {
 
-struct Case {
-    fairing::TriangleMesh mesh;
-    fairing::HalfEdgeMesh he;
-    fairing::SparseOperator op;
-    double h = 0;
-};
+using Case = meshes::Assembled;
 
 Case make(Operator op, int levels) {
-    Case c;
-    c.mesh = meshes::radial_noise(meshes::icosphere(levels), 0.05, 23);
-    c.he = fairing::HalfEdgeMesh::build(c.mesh.positions, c.mesh.triangles);
-    c.op = fairing::assemble(op, c.he, c.mesh.positions);
-    c.h = meshes::mean_edge_length(c.mesh.positions, c.mesh.triangles);
-    return c;
+    return meshes::assembled(meshes::radial_noise(meshes::icosphere(levels), 0.05, 23), op);
 }
 
 // lambda_dt of an L^2 step of dimensionless size t (section "Units" of the README).

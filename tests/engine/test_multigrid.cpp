@@ -23,21 +23,9 @@ using meshes::Positions;
 
 namespace {
 
-struct Case {
-    fairing::TriangleMesh mesh;
-    fairing::HalfEdgeMesh he;
-    fairing::SparseOperator op;
-    double h = 0;
-};
+using Case = meshes::Assembled;
 
-Case make(const fairing::TriangleMesh& mesh, Operator op) {
-    Case c;
-    c.mesh = mesh;
-    c.he = fairing::HalfEdgeMesh::build(c.mesh.positions, c.mesh.triangles);
-    c.op = fairing::assemble(op, c.he, c.mesh.positions);
-    c.h = meshes::mean_edge_length(c.mesh.positions, c.mesh.triangles);
-    return c;
-}
+Case make(const fairing::TriangleMesh& mesh, Operator op) { return meshes::assembled(mesh, op); }
 
 // lambda_dt of a step of dimensionless size t (fairing.h: time_step * h^(2 order), umbrella
 // time_step).
