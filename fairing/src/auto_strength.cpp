@@ -207,23 +207,16 @@ void advance(Context& ctx, Lanczos& l, int j, bool measure) {
     double* prev = l.previous.data();
     const double* cur = l.current.data();
     const double* prod = l.product.data();
-    double s0 = 0, s1 = 0, s2 = 0;
     const int threads = ctx.p.op->threads;
-    (void)threads;
-    FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1) \
-                   reduction(+ : s0, s1, s2))
-    for (int i = 0; i < n; ++i) {
-        if (!f[i]) continue;
-        double w[3];
+    // Summed in fixed blocks (kernels.h), so the same on any number of threads.
+    const std::array<double, 3> sums = blocked_sum<3>(n, threads, [=](int i, double* acc) {
+        if (!f[i]) return;
         for (int c = 0; c < 3; ++c) {
-            w[c] = prod[3 * i + c] / d[i] - a[c] * cur[3 * i + c] - b[c] * prev[3 * i + c];
-            prev[3 * i + c] = w[c];
+            const double w = prod[3 * i + c] / d[i] - a[c] * cur[3 * i + c] - b[c] * prev[3 * i + c];
+            prev[3 * i + c] = w;
+            acc[c] += d[i] * w * w;
         }
-        s0 += d[i] * w[0] * w[0];
-        s1 += d[i] * w[1] * w[1];
-        s2 += d[i] * w[2] * w[2];
-    }
-    const std::array<double, 3> sums{{s0, s1, s2}};
+    });
     for (int c = 0; c < 3; ++c) {
         if (!l.active[c]) continue;
         if (measure) {
