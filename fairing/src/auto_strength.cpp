@@ -394,7 +394,6 @@ struct Perturbation {
     Positions probe;  // b_i n_i on the data rows, 0 elsewhere
     Positions x;
     SparseOperator op;
-    std::vector<double> weight;
     StrengthProblem problem;
     std::unique_ptr<Context> ctx;
     Lanczos u;
