@@ -450,6 +450,13 @@ inline double radius_spread(const Positions& p) {
     return (hi - lo) / (sum / static_cast<double>(p.rows()));
 }
 
+// Free flags for n vertices with every k-th one (0, k, 2k, ...) fixed.
+inline std::vector<char> every_kth_fixed(int n, int k) {
+    std::vector<char> free(n, 1);
+    for (int i = 0; i < n; i += k) free[i] = 0;
+    return free;
+}
+
 // A mesh with its half-edge view and one operator assembled at its positions (solver tests).
 struct Assembled {
     TriangleMesh mesh;

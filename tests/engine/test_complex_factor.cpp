@@ -44,12 +44,6 @@ LinearSystem l2_system(const Case& c, double lambda_dt, const std::vector<char>&
     return s;
 }
 
-std::vector<char> every_kth_fixed(int n, int k) {
-    std::vector<char> free(n, 1);
-    for (int i = 0; i < n; i += k) free[i] = 0;
-    return free;
-}
-
 }  // namespace
 
 TEST(ComplexFactor, EqualsDenseL2SolveForEveryOperatorAndNorm) {
@@ -59,7 +53,7 @@ TEST(ComplexFactor, EqualsDenseL2SolveForEveryOperatorAndNorm) {
                                             << static_cast<int>(norm));
             const Case c = make(op, 3);
             const int n = c.op.size();
-            const std::vector<char> free = every_kth_fixed(n, 17);
+            const std::vector<char> free = meshes::every_kth_fixed(n, 17);
             const double lambda_dt = l2_lambda(c, op, op == Operator::Umbrella ? 10 : 22.5);
             Positions x = c.mesh.positions;
             fairing::SolveSettings settings;
@@ -105,7 +99,7 @@ TEST(ComplexFactor, BitIdenticalOnOneAndTwoThreads) {
         Case c = make(Operator::CurvatureFlow, 6);
         const int n = c.op.size();
         LinearSystem s = l2_system(c, l2_lambda(c, Operator::CurvatureFlow, 22.5),
-                                   every_kth_fixed(n, 101));
+                                   meshes::every_kth_fixed(n, 101));
         s.order = order;
         Positions one = c.mesh.positions, two = c.mesh.positions;
         c.op.threads = 1;

@@ -79,12 +79,6 @@ void expect_same_step(const Case& c, const LinearSystem& s) {
         }
 }
 
-std::vector<char> every_kth_fixed(int n, int k) {
-    std::vector<char> free(n, 1);
-    for (int i = 0; i < n; i += k) free[i] = 0;
-    return free;
-}
-
 }  // namespace
 
 TEST(Multigrid, FirstOrderStepEqualsJacobiOnATorusForEveryOperator) {
@@ -106,7 +100,7 @@ TEST(Multigrid, FirstOrderStepEqualsJacobiWithFixedVerticesSoftWeightsAndCompone
     const double lambda_dt = lambda(c, Operator::CurvatureFlow, 1, 20);
     {
         SCOPED_TRACE("fixed vertices");
-        expect_same_step(c, system(c, 1, lambda_dt, every_kth_fixed(n, 13)));
+        expect_same_step(c, system(c, 1, lambda_dt, meshes::every_kth_fixed(n, 13)));
     }
     {
         SCOPED_TRACE("soft weights, some zero");
@@ -136,7 +130,7 @@ TEST(Multigrid, L2StepByTheComplexSolveEqualsTheDenseSolve) {
         SCOPED_TRACE(fairing::to_string(op));
         const Case c = make(meshes::radial_noise(meshes::icosphere(3), 0.05, 23), op);
         const int n = c.op.size();
-        const std::vector<char> free = every_kth_fixed(n, 17);
+        const std::vector<char> free = meshes::every_kth_fixed(n, 17);
         const double lambda_dt = lambda(c, op, 2, op == Operator::Umbrella ? 10 : 22.5);
         const Solved mg =
             solve(c, system(c, 2, lambda_dt, free), Preconditioner::Multigrid, 1e-11);
@@ -153,7 +147,7 @@ TEST(Multigrid, L2StepEqualsJacobiOnALargerSphere) {
     const Case c = make(meshes::radial_noise(meshes::icosphere(5), 0.05, 23),
                         Operator::CurvatureFlow);
     expect_same_step(c, system(c, 2, lambda(c, Operator::CurvatureFlow, 2, 22.5),
-                               every_kth_fixed(c.op.size(), 31)));
+                               meshes::every_kth_fixed(c.op.size(), 31)));
 }
 
 TEST(Multigrid, L2WithSoftWeightsFallsBackToTheRealSolve) {
@@ -219,7 +213,7 @@ TEST(Multigrid, BitIdenticalOnOneAndTwoThreads) {
                       Operator::CurvatureFlow);
         const int n = c.op.size();
         const LinearSystem s = system(c, order, lambda(c, Operator::CurvatureFlow, order, 22.5),
-                                      every_kth_fixed(n, 101));
+                                      meshes::every_kth_fixed(n, 101));
         c.op.threads = 1;
         const Solved one = solve(c, s, Preconditioner::Multigrid);
         c.op.threads = 2;
