@@ -177,8 +177,9 @@ struct Context {
     // L^2 with D = M (no soft weights): on the free rows K P M^-1 K = C1 M^-1 C1, so the L^2
     // filter's G is G1^2 with G1 = M^-1/2 C1 M^-1/2 (C1 = -K, unit (mean edge)^2). The Lanczos
     // processes then run on G1: one product with K per step instead of two, and as many steps
-    // as the filter's poles at +-i/sqrt(lambda) need (about the complex solve's iterations)
-    // instead of those of the poles of (1 + lambda g)^-1 on the squared spectrum.
+    // as the filter's poles at +-i/sqrt(lambda) need instead of those of the pole of
+    // (1 + lambda g)^-1 on the squared spectrum (umbrella L^2 on the 1.2 M-face bunny: 78
+    // Lanczos steps).
     bool squared = false;
 };
 
