@@ -369,14 +369,12 @@ void start_movement(Context& ctx, Lanczos& u) {
     u.previous.setZero(n, 3);
 }
 
-// First basis vectors of the trace: Rademacher probes on the data rows; count = data rows.
-void start_probes(Context& ctx, Lanczos& z, double& count) {
+// First basis vectors of the trace: Rademacher probes on the `count` data rows.
+void start_probes(Context& ctx, Lanczos& z, double count) {
     const int n = ctx.n;
     z.current.setZero(n, 3);
-    count = 0;
     for (int i = 0; i < n; ++i) {
-        if (!(*ctx.p.free)[i] || !ctx.data[i]) continue;
-        ++count;
+        if (!ctx.data[i]) continue;
         const std::uint64_t bits = mix(static_cast<std::uint64_t>(i));
         for (int c = 0; c < 3; ++c) z.current(i, c) = ((bits >> c) & 1 ? 1.0 : -1.0) / std::sqrt(ctx.d[i]);
     }
@@ -839,17 +837,15 @@ StrengthEstimate estimate_strength(const StrengthProblem& p) {
     ctx.c.diagonal.assign(ctx.n, 0.0);
     ctx.d.assign(ctx.n, 1.0);
     ctx.data.assign(ctx.n, 0);
-    double mean_d = 0, count = 0;
+    double count = 0;  // data rows
     for (int i = 0; i < ctx.n; ++i) {
         if (!(*p.free)[i]) continue;
         ctx.d[i] = p.op->mass[i] / (i < p.data_vertices ? (*p.weight)[i] : 1.0);
         if (i >= p.data_vertices) continue;
         ctx.data[i] = 1;
-        mean_d += ctx.d[i];
         ++count;
     }
     if (count == 0) return e;
-    mean_d /= count;
     for (int i = 0; i < ctx.n && ctx.squared; ++i)
         if ((*p.free)[i] && !(ctx.d[i] == p.op->mass[i])) ctx.squared = false;  // soft weights
     if (ctx.squared) {

@@ -250,8 +250,8 @@ void Run::record(const SolveStats& stats, int step, const char* system) {
         (needle_faces_ > 0
              ? " (" + detail::count_of(needle_faces_, "face is a needle", "faces are needles") +
                    ", with an angle below 0.01 rad: their cotangent weights, even capped at "
-                   "100, make the system ill-conditioned; MeshLab's 'Remove T-Vertices by Edge Flip' or 'Merge Close "
-                   "Vertices' repairs them)"
+                   "100, make the system ill-conditioned; MeshLab's 'Remove T-Vertices by Edge "
+                   "Flip' or 'Merge Close Vertices' repairs them)"
              : std::string());
     if (!options_.accept_unconverged)
         throw Error(what + ". Raise the iteration cap or the tolerance, or use a smaller "
