@@ -5,13 +5,13 @@
 #include "fairing/solver.h"
 #include "geometry.h"
 #include "kernels.h"
+#include "lanczos_filter.h"
 
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <complex>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -244,75 +244,33 @@ int size_of(const Lanczos& l, int c) {
     return std::min(static_cast<int>(l.alpha[c].size()), static_cast<int>(l.beta[c].size()) + 1);
 }
 
-// filtered() for Context::squared: (I + lambda T^2)^-1 = Re (I + i sqrt(lambda) T)^-1 on real
-// vectors, the tridiagonal complex symmetric I + i sqrt(lambda) T factored once (LDL', no
-// pivoting: its leading minors prod (1 + i sqrt(lambda) theta) never vanish).
-Eigen::VectorXd filtered_squared(const Lanczos& l, int c, const Filter& f, double& kept) {
-    using Complex = std::complex<double>;
-    const int k = size_of(l, c);
-    Eigen::VectorXd w = Eigen::VectorXd::Zero(k), sum = Eigen::VectorXd::Zero(k);
-    kept = 0;
-    if (k == 0) return sum;
-    w(0) = 1;
-    const std::vector<double>& a = l.alpha[c];
-    const std::vector<double>& b = l.beta[c];
-    const Complex s(0, std::sqrt(f.lambda));
-    std::vector<Complex> pivot(k), upper(k), z(k);
-    for (int i = 0; i < k; ++i) {
-        const Complex off = i > 0 ? s * b[i - 1] : Complex(0);
-        pivot[i] = 1.0 + s * a[i] - (i > 0 ? off * upper[i - 1] : Complex(0));
-        upper[i] = i + 1 < k ? s * b[i] / pivot[i] : Complex(0);
-    }
-    for (int step = 0; step < f.steps; ++step) {
-        for (int i = 0; i < k; ++i)  // forward: L z = w
-            z[i] = (w(i) - (i > 0 ? s * b[i - 1] * z[i - 1] : Complex(0))) / pivot[i];
-        for (int i = k - 2; i >= 0; --i) z[i] -= upper[i] * z[i + 1];  // back: L' x = z
-        for (int i = 0; i < k; ++i) w(i) = z[i].real();
-        sum += w;
-    }
-    kept = w(0);
-    return f.lambda * sum;
-}
-
-// The filter applied to e1 through the Lanczos tridiagonal matrix T_k: w_j = (I + lambda T)^-1
-// w_{j-1} (explicit: (I - lambda T) w_{j-1}), w_0 = e1, by the Thomas algorithm (I + lambda T
-// is symmetric positive definite). Returns the displacement coefficients
-// phi(T) e1 = lambda sum w_j (j = 1..s; explicit j = 0..s-1) and sets kept = e1' w_s, the
-// Gauss quadrature of e1' h(T) e1 (Golub & Meurant). O(steps k) per lambda, no eigenvectors.
+// The filter applied to e1 through the Lanczos tridiagonal matrix T_k: implicit steps (squared
+// for Context::squared) by lanczos_filter.h; explicit ones as w_j = (I - lambda T) w_{j-1},
+// w_0 = e1. Returns the displacement coefficients phi(T) e1 = lambda sum w_j (j = 1..s; explicit
+// j = 0..s-1) and sets kept = e1' w_s, the Gauss quadrature of e1' h(T) e1 (Golub & Meurant).
+// O(steps k) per lambda, no eigenvectors.
 Eigen::VectorXd filtered(const Lanczos& l, int c, const Filter& f, double& kept) {
     const int k = size_of(l, c);
+    const std::vector<double>& a = l.alpha[c];
+    const std::vector<double>& b = l.beta[c];
+    if (!f.explicit_steps) {
+        const std::vector<double> sum =
+            implicit_steps_filter(a, b, k, f.lambda, f.steps, f.squared, &kept);
+        return Eigen::Map<const Eigen::VectorXd>(sum.data(), k);
+    }
     Eigen::VectorXd w = Eigen::VectorXd::Zero(k), sum = Eigen::VectorXd::Zero(k), next(k);
     kept = 0;
     if (k == 0) return sum;
     w(0) = 1;
-    const std::vector<double>& a = l.alpha[c];
-    const std::vector<double>& b = l.beta[c];
-    if (f.squared && !f.explicit_steps) return filtered_squared(l, c, f, kept);
-    std::vector<double> pivot(k), upper(k);
-    if (!f.explicit_steps) {  // LDL' of I + lambda T, once
-        for (int i = 0; i < k; ++i) {
-            const double off = i > 0 ? f.lambda * b[i - 1] : 0.0;
-            pivot[i] = 1 + f.lambda * a[i] - (i > 0 ? off * upper[i - 1] : 0.0);
-            pivot[i] = std::max(pivot[i], 1e-300);
-            upper[i] = i + 1 < k ? f.lambda * b[i] / pivot[i] : 0.0;
-        }
-    }
     for (int step = 0; step < f.steps; ++step) {
-        if (f.explicit_steps) {
-            sum += w;
-            for (int i = 0; i < k; ++i) {
-                double t = a[i] * w(i);
-                if (i > 0) t += b[i - 1] * w(i - 1);
-                if (i + 1 < k) t += b[i] * w(i + 1);
-                next(i) = w(i) - f.lambda * t;
-            }
-            w.swap(next);
-        } else {
-            for (int i = 0; i < k; ++i)  // forward: L z = w
-                w(i) = (w(i) - (i > 0 ? f.lambda * b[i - 1] * w(i - 1) : 0.0)) / pivot[i];
-            for (int i = k - 2; i >= 0; --i) w(i) -= upper[i] * w(i + 1);  // back: L' x = z
-            sum += w;
+        sum += w;
+        for (int i = 0; i < k; ++i) {
+            double t = a[i] * w(i);
+            if (i > 0) t += b[i - 1] * w(i - 1);
+            if (i + 1 < k) t += b[i] * w(i + 1);
+            next(i) = w(i) - f.lambda * t;
         }
+        w.swap(next);
     }
     kept = w(0);
     return f.lambda * sum;

@@ -6,11 +6,11 @@
 #include "complex_factor.h"
 #include "geometry.h"
 #include "kernels.h"
+#include "lanczos_filter.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <complex>
 
 namespace fairing {
 namespace detail {
@@ -29,46 +29,18 @@ struct Tridiagonal {
     std::vector<double> a, b;
 };
 
-// Solves (I + sigma T) y = r in place (Thomas algorithm). sigma = lambda > 0: I + sigma T is
-// symmetric positive definite; sigma = +-i s: its Hermitian part is I. Neither needs pivoting.
-template <class S>
-void shifted_solve(const Tridiagonal& t, S sigma, std::vector<S>& r) {
-    const int k = static_cast<int>(r.size());
-    std::vector<S> c(k, S(0));
-    S denominator = S(1) + sigma * t.a[0];
-    if (k > 1) c[0] = sigma * t.b[0] / denominator;
-    r[0] /= denominator;
-    for (int i = 1; i < k; ++i) {
-        const S off = sigma * t.b[i - 1];
-        denominator = S(1) + sigma * t.a[i] - off * c[i - 1];
-        if (i + 1 < k) c[i] = sigma * t.b[i] / denominator;
-        r[i] = (r[i] - off * r[i - 1]) / denominator;
-    }
-    for (int i = k - 2; i >= 0; --i) r[i] -= c[i] * r[i + 1];
-}
-
-// |u| phi(T) e1: the coefficients of the Lanczos vectors in x_0 - x_s (frozen_steps.h). With
-// `partial`, also those of x_0 - x_m for m = 1..s-1.
+// |u| phi(T) e1: the coefficients of the Lanczos vectors in x_0 - x_s (frozen_steps.h,
+// lanczos_filter.h). With `partial`, also those of x_0 - x_m for m = 1..s-1.
 std::vector<double> coefficients(const Tridiagonal& t, double beta0, double lambda, int steps,
                                  bool squared, std::vector<std::vector<double>>* partial) {
     const int k = static_cast<int>(t.a.size());
-    std::vector<double> sum(k, 0.0), r(k, 0.0);
-    if (k == 0) return sum;
-    r[0] = beta0;
-    std::vector<std::complex<double>> z(squared ? k : 0);
-    const double s = std::sqrt(lambda);
-    for (int j = 1; j <= steps; ++j) {
-        if (squared) {  // (I + lambda T^2)^-1 = (I + i s T)^-1 (I - i s T)^-1
-            for (int i = 0; i < k; ++i) z[i] = r[i];
-            shifted_solve(t, std::complex<double>(0, -s), z);
-            shifted_solve(t, std::complex<double>(0, s), z);
-            for (int i = 0; i < k; ++i) r[i] = z[i].real();
-        } else {
-            shifted_solve(t, lambda, r);
-        }
-        for (int i = 0; i < k; ++i) sum[i] += lambda * r[i];
-        if (partial && j < steps) partial->push_back(sum);
-    }
+    const std::size_t first = partial ? partial->size() : 0;
+    std::vector<double> sum = implicit_steps_filter(t.a, t.b, k, lambda, steps, squared, nullptr,
+                                                    partial);
+    for (double& v : sum) v *= beta0;
+    if (partial)
+        for (std::size_t m = first; m < partial->size(); ++m)
+            for (double& v : (*partial)[m]) v *= beta0;
     return sum;
 }
 
