@@ -108,20 +108,15 @@ QString FilterImplicitFairing::filterInfo(fairing_plugin::FilterId id) const
         "<b>Operator order</b>: L&sup2; (section 2.6) removes noise more sharply than L and keeps "
         "larger features. "
         "<b>Integration</b>: implicit is stable for any step; explicit is for comparison only. "
-        "<b>Preserve volume</b>: rescales each closed component to its initial volume after each "
-        "step (section 3). "
+        "<b>Preserve volume</b>: restores each closed component's volume after each step "
+        "(section 3) by the smallest offset along the normals. "
         "<b>Open components</b>: keep nothing or the surface area of components with a boundary. "
         "<b>Boundary</b>: fixed, faired as a curve, or moved through a virtual vertex per hole "
         "(section 5.3). "
         "<b>Use vertex quality as smoothing weight</b>: quality in [0,1] scales the smoothing "
         "per vertex, 0 fixes it (section 2.7). "
-        "<b>Invert quality weight</b>: uses 1 - quality. "
         "<b>Affect only selection</b>: unselected vertices stay exactly where they are. "
-        "<b>Solver tolerance</b>: stop when |AX-b|/|b| is below it. "
-        "<b>Max solver iterations</b>: cap per solve. "
-        "<b>Freeze operator</b>: keep the first step's weights for all steps (section 4.3). "
-        "<b>Accept unconverged solves</b>: keep the last iterate with a warning instead of "
-        "failing.<br>"
+        "<b>Freeze operator</b>: keep the first step's weights for all steps (section 4.3).<br>"
         "See: <i>M. Desbrun, M. Meyer, P. Schr&ouml;der, A. H. Barr</i>, <b>\"Implicit Fairing "
         "of Irregular Meshes using Diffusion and Curvature Flow\"</b>, SIGGRAPH 99, 317-324.");
 }
@@ -167,9 +162,9 @@ void FilterImplicitFairing::initParameters(fairing_plugin::FilterId id, const Me
            "normalized variant uses the operators of section 5.5, stable up to a time step of "
            "about 1.")));
     par.addParam(RichBool(kPreserveVolume, d.preserveVolume, tr("Preserve volume"),
-        tr("After each step, restore the initial volume of every closed component (scaling "
-           "about its centroid, or offsetting free vertices along their normals when some "
-           "vertices are fixed).")));
+        tr("After each step, restore the initial volume of every closed component (sections "
+           "3.1-3.2) by offsetting its free vertices along their normals, the smallest "
+           "correction (a loss above 10 % is scaled about the centroid, as in the paper).")));
     par.addParam(RichEnum(kOpenInvariant, d.openInvariant, labels(openInvariantLabels()), tr("Open components"),
         tr("Components with a boundary enclose no volume: keep nothing, or keep their surface "
            "area.")));

@@ -13,6 +13,7 @@
 //   eval CLEAN TRUTH INPUT RESULT...   one JSON line per RESULT: rms, max (in CLEAN's mean
 //                                      edges), volume_change (percent, vs INPUT)
 //   sweep INPUT CLEAN TRUTH OP ORDER STEPS X0 [--ts T1,T2,...] [--auto|--at-chosen]
+//         [--no-volume|--scale]
 //                                      runs fairing::fair() in-process on INPUT (rounded to
 //                                      float, as the CLI and MeshLab read it) and prints one JSON
 //                                      line per time step: the log-scale search of the best one
@@ -21,7 +22,9 @@
 //                                      one (Options::time_step an optional value), else a line
 //                                      with "auto":"n/a"; --at-chosen: the automatic choice and
 //                                      then one fixed run at the time step it chose (nothing
-//                                      else; for the cost row)
+//                                      else; for the cost row); --no-volume: volume not
+//                                      restored; --scale: restored by the paper's scaling
+//                                      instead of the default normal offset
 // TRUTH: sphere | plane | torus:R:r | mesh (the CLEAN mesh's surface).
 #include "bench_mesh.h"
 #include "denoise_shapes.h"
@@ -137,6 +140,8 @@ int sweep(int argc, char** argv) {
         const std::string a = argv[i];
         if (a == "--auto") want_auto = true;
         else if (a == "--at-chosen") want_auto = at_chosen = true;
+        else if (a == "--no-volume") o.preserve_volume = false;
+        else if (a == "--scale") o.restoration = fairing::VolumeRestoration::Scale;
         else if (a == "--ts" && i + 1 < argc) {
             std::stringstream ss(argv[++i]);
             std::string x;

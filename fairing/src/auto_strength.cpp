@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 #include "auto_strength.h"
+#include "fairing/invariants.h"
 
 #include "fairing/solver.h"
 #include "geometry.h"
@@ -464,13 +465,13 @@ class Sketch {
 public:
     // The volume restoration after each step (sections 3.1-3.2) undoes the part of the normal
     // residual along one field per restored component: s_i = n_i . (x_i - centroid) for a
-    // rescaling, 1 on the free vertices for a normal offset. It picks the multiple gamma that
-    // restores the volume, gamma = sum a_i n_i.r_i / sum a_i s_i (a_i: vertex areas), so the
-    // residual the user sees is n.r - gamma s: two linear functionals of r per component, kept
-    // exactly beside the sketch.
+    // rescaling, 1 on the free vertices for a normal offset, by the multiple that restores the
+    // volume (see restored()). Three linear functionals of r per component, kept exactly beside
+    // the sketch: a . n.r (the volume lost), s . n.r and 1 . n.r (a_i: vertex areas).
     struct Restoration {
         std::vector<int> component;  // per data vertex, -1: not restored
         std::vector<double> field, area;
+        std::vector<char> offset;  // per component, as StrengthProblem::offset
         int components = 0;
     };
 
@@ -478,12 +479,14 @@ public:
         : restoration_(std::move(restoration)) {
         const int nc = restoration_.components;
         volume_.assign(nc, 0.0);
+        area_.assign(nc, 0.0);
         field2_.assign(nc, 0.0);
         count_.assign(nc, 0.0);
         for (std::size_t i = 0; i < restoration_.component.size(); ++i) {
             const int k = restoration_.component[i];
             if (k < 0) continue;
             volume_[k] += restoration_.area[i] * restoration_.field[i];
+            area_[k] += restoration_.area[i];
             field2_[k] += restoration_.field[i] * restoration_.field[i];
             count_[k] += 1;
         }
@@ -514,9 +517,9 @@ public:
             slot[c] = used_++;
         }
         const int nc = restoration_.components;
-        std::array<std::vector<double>, 3> by_volume, by_field;
+        std::array<std::vector<double>, 3> by_volume, by_field, by_sum;
         for (int c = 0; c < 3; ++c) by_volume[c].assign(slot[c] >= 0 ? nc : 0, 0.0);
-        by_field = by_volume;
+        by_field = by_sum = by_volume;
         for (std::size_t i = 0; i < bucket_.size(); ++i) {
             const int b = bucket_[i];
             const int k = i < restoration_.component.size() ? restoration_.component[i] : -1;
@@ -528,12 +531,14 @@ public:
                 if (k < 0) continue;
                 by_volume[c][k] += restoration_.area[i] * v;
                 by_field[c][k] += restoration_.field[i] * v;
+                by_sum[c][k] += v;
             }
         }
         for (int c = 0; c < 3; ++c) {
             if (slot[c] < 0) continue;
             volume_part_.push_back(std::move(by_volume[c]));
             field_part_.push_back(std::move(by_field[c]));
+            sum_part_.push_back(std::move(by_sum[c]));
         }
     }
     // |sum_c S_c y_c(lambda)|^2 for every lambda of `grid` from `first` to `last` (exclusive),
@@ -574,18 +579,30 @@ private:
     // |n.r|^2 over the component. The sketch gives |n.r|^2 for the whole mesh; the components'
     // share of it is not known separately, so the beta^2 applies to the whole RSS_n when
     // everything is restored (one closed component, the common case) and to none otherwise.
+    // An offset component moves by t = a . n.r / sum a, to first order, and leaves the noise
+    // alone (beta = 1): the residual is n.r - t, |.|^2 = |n.r|^2 - 2 t 1 . n.r + t^2 N. Which of
+    // the two restore_measure uses, it decides as here.
     double restored(const Eigen::Ref<const Eigen::VectorXf>& y, double rss_n, double& gain) const {
         gain = 1;
         if (restoration_.components == 0) return rss_n;
         double extra = 0, weighted_beta = 0, covered = 0;
         for (int k = 0; k < restoration_.components; ++k) {
             if (!(volume_[k] > 0)) continue;
-            double by_volume = 0, by_field = 0;
+            double by_volume = 0, by_field = 0, by_sum = 0;
             for (Eigen::Index j = 0; j < used_; ++j) {
                 by_volume += volume_part_[j][k] * y(j);
                 by_field += field_part_[j][k] * y(j);
+                by_sum += sum_part_[j][k] * y(j);
             }
             const double v = volume_[k] / 3;
+            const int offset = restoration_.offset[k];
+            if (offset == 1 || (offset == 2 && std::abs(by_volume) <= kMaxOffsetChange * (v - by_volume))) {
+                const double t = by_volume / area_[k];
+                extra += t * t * count_[k] - 2 * t * by_sum;
+                weighted_beta += count_[k];
+                covered += count_[k];
+                continue;
+            }
             const double left = std::max(v - by_volume, 1e-3 * v);
             const double beta = std::cbrt(v / left);
             extra += (1 - beta) * (1 - beta) * field2_[k] + 2 * beta * (1 - beta) * by_field;
@@ -599,9 +616,9 @@ private:
     }
 
     Restoration restoration_;
-    std::vector<double> volume_, field2_, count_;  // per component: a . s, |s|^2, vertices
+    std::vector<double> volume_, area_, field2_, count_;  // per component: a . s, sum a, |s|^2, N
     double total_ = 0;                             // data vertices
-    std::vector<std::vector<double>> volume_part_, field_part_;  // per column, per component
+    std::vector<std::vector<double>> volume_part_, field_part_, sum_part_;  // per column, component
     int rows_ = 0;
     bool exact_ = false;
     std::vector<int> bucket_;  // per vertex, -1 off the data
@@ -766,8 +783,9 @@ Sketch::Restoration restoration(const StrengthProblem& p, const Positions& norma
         const int k = p.restored[i];
         if (k < 0 || !(*p.free)[i] || !(weight[k] > 0)) continue;
         r.component[i] = k;
-        r.field[i] = p.offset[k] ? 1.0 : normals.row(i).dot(p.x->row(i) - centroid[k] / weight[k]);
+        r.field[i] = normals.row(i).dot(p.x->row(i) - centroid[k] / weight[k]);
     }
+    r.offset = p.offset;
     r.components = static_cast<int>(p.offset.size());
     return r;
 }

@@ -82,8 +82,9 @@ struct StrengthProblem {
     double max_time_step = 0;  // explicit: the largest time step allowed; else unused
     int threads = 1;
     // Volume restoration after each step: per data vertex the restored component's index (-1:
-    // none), and per such component 1 when it is restored by a normal offset (it has fixed
-    // vertices), 0 when rescaled. Empty: nothing restored.
+    // none), and per such component how: 0 rescaled, 1 offset along the normals (it has fixed
+    // vertices), 2 offset while the volume changes by at most kMaxOffsetChange, else rescaled
+    // (VolumeRestoration::NormalOffset; restore_measure). Empty: nothing restored.
     std::vector<int> restored;
     std::vector<char> offset;
     std::function<void(double)> progress;  // fraction of the estimate done, in [0, 1]

@@ -313,10 +313,11 @@ LinearSystem Run::system_for(const SparseOperator& op, const std::vector<char>& 
 // - L^2 with soft weights: the Krylov space would be the L^2 operator's, unpreconditioned; not
 //   measured, expected slower than the steps' preconditioned solves: one by one.
 // The process is the same filter as the steps one by one only with implicit steps on one system
-// (no boundary curve first), the L2 stopping rule, and every restored component either rescaled
-// whole (all its vertices free: the filter then keeps constants on it and the rescaling commutes
-// with it up to a translation the process replays) or not moving; a normal offset (fixed
-// vertices) is not linear. Anywhere else, or when the Lanczos process gives up, the steps are
+// (no boundary curve first), the L2 stopping rule, and, with VolumeRestoration::Scale, every
+// restored component either rescaled whole (all its vertices free: the filter then keeps
+// constants on it and the rescaling commutes with it up to a translation the process replays) or
+// not moving; a normal offset after each step (fixed vertices) is not linear. With
+// VolumeRestoration::NormalOffset the volume is restored once, after the last step. Anywhere else, or when the Lanczos process gives up, the steps are
 // taken one by one as before (false, x_ untouched). A rescaled run keeps the intermediate
 // results, 12 bytes per vertex and step (24 when single precision is not enough), hence the cap.
 bool Run::take_frozen_steps(double lambda_dt, int steps) {
@@ -328,7 +329,9 @@ bool Run::take_frozen_steps(double lambda_dt, int steps) {
     detail::FrozenProblem problem;
     std::vector<int> unchanged;
     const auto& components = he_.components();
-    for (std::size_t c = 0; c < components.size(); ++c) {
+    // A normal offset is restored once, after the last step (Options::preserve_volume).
+    const bool offset = options_.restoration == VolumeRestoration::NormalOffset;
+    for (std::size_t c = 0; c < components.size() && !offset; ++c) {
         if (target_[c] == 0) continue;
         std::size_t movable = 0, moving = 0;
         for (int v : components[c].vertices) {
@@ -367,6 +370,7 @@ bool Run::take_frozen_steps(double lambda_dt, int steps) {
     result_.max_residual = std::max(result_.max_residual, outcome.error);
     for (int c : problem.rescaled) result_.components[c].restoration = Restoration::Scale;
     for (int c : unchanged) result_.components[c].restoration = Restoration::Unchanged;
+    if (offset) restore();
     for (int i = 0; i < n_; ++i) ever_free_[i] |= free[i];
     result_.steps = steps;
     report_progress(1.0);
@@ -379,7 +383,8 @@ void Run::restore() {
         if (target_[c] == 0) continue;
         // x_ may hold virtual vertices after the first n_ rows; they are not part of any
         // component and restore_measure only touches the component's own rows.
-        const Restoration how = restore_measure(he_, components[c], restorable_, target_[c], x_);
+        const Restoration how =
+            restore_measure(he_, components[c], restorable_, target_[c], x_, options_.restoration);
         result_.components[c].restoration = how;
     }
 }
@@ -528,7 +533,9 @@ void Run::choose_time_step() {
     for (std::size_t c = 0; c < components.size(); ++c) {
         if (target_[c] == 0 || !result_.components[c].closed) continue;  // volume only
         for (int v : components[c].vertices) problem.restored[v] = static_cast<int>(problem.offset.size());
-        problem.offset.push_back(result_.components[c].has_fixed ? 1 : 0);
+        problem.offset.push_back(result_.components[c].has_fixed                             ? 1
+                                 : options_.restoration == VolumeRestoration::NormalOffset ? 2
+                                                                                           : 0);
     }
     if (options_.progress) problem.progress = [this](double f) { report_progress(kShare * f); };
     if (options_.op != Operator::Umbrella)  // weights of the positions: Monte-Carlo divergence
@@ -558,6 +565,9 @@ void Run::take_steps() {
     const bool curve = options_.boundary == BoundaryMode::SmoothCurve && !he_.boundary_loops().empty();
     ever_free_.assign(n_, 0);
     if (steps >= 2 && !recompute && !curve && take_frozen_steps(lambda_dt, steps)) return;
+    // On a frozen operator the steps are one linear filter, and a normal offset follows it once
+    // (Options::preserve_volume), as take_frozen_steps does.
+    const bool restore_at_end = !recompute && options_.restoration == VolumeRestoration::NormalOffset;
     for (int step = 0; step < steps; ++step) {
         if (step > 0 && recompute) assemble_surface();
         if (curve) {
@@ -571,7 +581,7 @@ void Run::take_steps() {
             throw Error("step " + std::to_string(step + 1) +
                         " produced non-finite positions; the mesh was left unchanged (with "
                         "explicit integration, use a smaller time step)");
-        restore();
+        if (!restore_at_end || step + 1 == steps) restore();
         ++result_.steps;
         report_progress(static_cast<double>(step + 1) / steps);
     }

@@ -74,37 +74,23 @@ Vec3 component_centroid(const HalfEdgeMesh& mesh, const Component& component,
     return centroid(mesh, component, component.closed(), positions);
 }
 
-Restoration restore_measure(const HalfEdgeMesh& mesh, const Component& component,
-                            const std::vector<char>& free, double target, Positions& x) {
-    const bool volume = component.closed();
-    const char* what = volume ? "volume" : "area";
-    int free_count = 0;
-    for (int v : component.vertices) free_count += free[v] ? 1 : 0;
-    if (free_count == 0) return Restoration::Unchanged;
+namespace {
 
-    // A closed component oriented inwards has a negative volume; work with its magnitude.
-    const double sign = volume && target < 0 ? -1.0 : 1.0;
-    target *= sign;
-    const Vec3 o = detail::row(x, component.vertices.front());
-    const double now =
-        sign * measure(mesh, component, volume, o, [&](int v) { return detail::row(x, v); });
-    if (!(now > 0) || !(target > 0) || !std::isfinite(now))
-        throw Error(std::string("the ") + what + " of a component became " +
-                    (now > 0 ? "non-finite" : "zero or negative") +
-                    " during smoothing, so it cannot be restored; use a smaller time step");
+// Section 3.2: a uniform scale by beta = (V0/Vn)^(1/3), here about the centroid so the component
+// does not move as a whole.
+void scale_component(const HalfEdgeMesh& mesh, const Component& component, bool volume,
+                     double ratio, Positions& x) {
+    const double beta = std::pow(ratio, volume ? 1.0 / 3.0 : 0.5);
+    const Vec3 c = centroid(mesh, component, volume, x);
+    for (int v : component.vertices) x.row(v) = (c + beta * (detail::row(x, v) - c)).transpose();
+}
 
-    if (free_count == static_cast<int>(component.vertices.size())) {
-        // Section 3.2: a uniform scale by beta = (V0/Vn)^(1/3), here about the centroid so the
-        // component does not move as a whole.
-        const double beta = std::pow(target / now, volume ? 1.0 / 3.0 : 0.5);
-        const Vec3 c = centroid(mesh, component, volume, x);
-        for (int v : component.vertices) x.row(v) = (c + beta * (detail::row(x, v) - c)).transpose();
-        return Restoration::Scale;
-    }
-
-    // Fixed vertices must stay put, so scaling is out: offset the free vertices along their
-    // area-weighted unit normals by a common distance t with measure(t) = target. measure(t) is
-    // a cubic (volume) or a smooth function (area) of t; the secant method finds t to rounding.
+// Offsets the free vertices along their area-weighted unit normals by a common distance t with
+// measure(t) = target. measure(t) is a cubic (volume) or a smooth function (area) of t; the
+// secant method finds t to rounding. False (x untouched) if it does not.
+bool offset_component(const HalfEdgeMesh& mesh, const Component& component, bool volume,
+                      const std::vector<char>& free, double sign, double target, double now,
+                      Positions& x) {
     std::vector<Vec3> normal(x.rows(), Vec3::Zero());
     for (int f : component.faces) {
         const Triangle& t = mesh.faces()[f];
@@ -116,6 +102,7 @@ Restoration restore_measure(const HalfEdgeMesh& mesh, const Component& component
         const double length = normal[v].norm();
         normal[v] = free[v] && length > 0 ? Vec3(normal[v] / length) : Vec3::Zero();
     }
+    const Vec3 o = detail::row(x, component.vertices.front());
     const std::function<double(double)> residual = [&](double t) {
         return sign * measure(mesh, component, volume, o,
                               [&](int v) { return Vec3(detail::row(x, v) + t * normal[v]); }) -
@@ -135,13 +122,48 @@ Restoration restore_measure(const HalfEdgeMesh& mesh, const Component& component
         t1 = t2;
         f1 = residual(t1);
     }
-    if (!std::isfinite(t1) || std::abs(f1) > 1e-12 * target)
+    if (!std::isfinite(t1) || std::abs(f1) > 1e-12 * target) return false;
+    for (int v : component.vertices)
+        if (free[v]) x.row(v) += t1 * normal[v].transpose();
+    return true;
+}
+
+}  // namespace
+
+Restoration restore_measure(const HalfEdgeMesh& mesh, const Component& component,
+                            const std::vector<char>& free, double target, Positions& x,
+                            VolumeRestoration how) {
+    const bool volume = component.closed();
+    const char* what = volume ? "volume" : "area";
+    int free_count = 0;
+    for (int v : component.vertices) free_count += free[v] ? 1 : 0;
+    if (free_count == 0) return Restoration::Unchanged;
+
+    // A closed component oriented inwards has a negative volume; work with its magnitude.
+    const double sign = volume && target < 0 ? -1.0 : 1.0;
+    target *= sign;
+    const Vec3 o = detail::row(x, component.vertices.front());
+    const double now =
+        sign * measure(mesh, component, volume, o, [&](int v) { return detail::row(x, v); });
+    if (!(now > 0) || !(target > 0) || !std::isfinite(now))
+        throw Error(std::string("the ") + what + " of a component became " +
+                    (now > 0 ? "non-finite" : "zero or negative") +
+                    " during smoothing, so it cannot be restored; use a smaller time step");
+
+    // With fixed vertices only the offset keeps them put. Without, the offset is the smaller
+    // correction while the loss is small; a gross one (a collapsing component) would fold an
+    // offset surface over itself, and scaling keeps the shape.
+    const bool whole = free_count == static_cast<int>(component.vertices.size());
+    const bool offset = !whole || (how == VolumeRestoration::NormalOffset &&
+                                   std::abs(target / now - 1) <= kMaxOffsetChange);
+    if (offset && offset_component(mesh, component, volume, free, sign, target, now, x))
+        return Restoration::NormalOffset;
+    if (!whole)
         throw Error(std::string("could not restore the ") + what +
                     " of a component with fixed vertices by moving its free vertices along "
                     "their normals; switch volume preservation off or free more vertices");
-    for (int v : component.vertices)
-        if (free[v]) x.row(v) += t1 * normal[v].transpose();
-    return Restoration::NormalOffset;
+    scale_component(mesh, component, volume, target / now, x);
+    return Restoration::Scale;
 }
 
 }  // namespace fairing

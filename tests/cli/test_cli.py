@@ -235,6 +235,8 @@ def case_json():
         vb, va = j["volume_before"], j["volume_after"]
         check(vb > 4.0 and abs(va - vb) <= 1e-6 * abs(vb),
               "volume not preserved: %r -> %r" % (vb, va))
+        check(j["volume_restoration"] == ["normal offset of the free vertices"],
+              "volume_restoration %r" % j.get("volume_restoration"))
         automatic = ts in (None, "auto")
         check(j["automatic_time_step"] == automatic, "automatic_time_step %r" % j)
         if automatic:  # the chosen step, reported, is the one used
@@ -253,6 +255,15 @@ def case_json():
                   "--no-volume"])
     check(j["volume_after"] < 0.999 * j["volume_before"],
           "--no-volume did not let the sphere shrink: %r" % j)
+    # --volume-restoration scale: the paper's scaling, volume kept, another result
+    a = run_json([src, work("offset.ply"), "--time-step", 22.5])
+    b = run_json([src, work("scaled.ply"), "--time-step", 22.5, "--volume-restoration", "scale"])
+    check(b["volume_restoration"] == ["scaled about the centroid"],
+          "--volume-restoration scale: %r" % b.get("volume_restoration"))
+    check(abs(b["volume_after"] - b["volume_before"]) <= 1e-6 * b["volume_before"],
+          "--volume-restoration scale lost the volume: %r" % b)
+    check(ML.read_ply_vertices(work("offset.ply")) != ML.read_ply_vertices(work("scaled.ply")),
+          "--volume-restoration scale gave the offset's result")
     # below 50,000 vertices the solver always runs on one thread: --threads changes nothing
     a = run_json([src, work("t1.ply"), "--threads", 1])
     b = run_json([src, work("t2.ply"), "--threads", 2])
@@ -449,7 +460,7 @@ def case_errors():
 
 
 OPTIONS = ["--operator", "--time-step", "--steps", "--order", "--explicit", "--normalized",
-           "--no-volume", "--area", "--boundary", "--weights-from-quality", "--invert-weights",
+           "--no-volume", "--volume-restoration", "--area", "--boundary", "--weights-from-quality", "--invert-weights",
            "--freeze", "--tolerance", "--max-iterations", "--accept-unconverged", "--preconditioner",
            "--threads",
            "--json", "--ascii", "--quiet", "--help", "--version"]

@@ -1,15 +1,19 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
-// Sections 3.1-3.2: exact volume preservation, per closed component, by scaling about the
-// component's (solid) centroid; open components: area or nothing.
+// Sections 3.1-3.2: exact volume preservation, per closed component, by the paper's scaling
+// about the component's (solid) centroid (VolumeRestoration::Scale) or by the default normal
+// offset; open components: area or nothing.
 //
 // What is asserted about centroids: after one step, each closed component of the restored
 // result is exactly the unrestored result (same options with preserve_volume = false) scaled
 // by beta = (V0 / Vn)^(1/3) about that component's solid centroid (fairing.h, invariants.h).
 // So the solid centroid of every component is the one the smoothing step produced, and the
 // restoration never drags a component toward or away from the world origin (the components sit
-// far from it). Volumes are recomputed here with eq. 10 on the output positions.
+// far from it). The normal offset moves every vertex by one distance along its normal, and less
+// in all than the scaling. Volumes are recomputed here with eq. 10 on the output positions.
 #include "meshes.h"
+
+#include "fairing/invariants.h"
 
 #include <gtest/gtest.h>
 
@@ -30,6 +34,7 @@ using meshes::kOperators;
 
 Options options(Operator op, int order, int steps, double time_step = 2.0) {
     Options o;
+    o.restoration = fairing::VolumeRestoration::Scale;
     o.op = op;
     o.order = order;
     o.steps = steps;
@@ -212,4 +217,71 @@ TEST(Volume, OffSwitchLetsItShrink) {
     EXPECT_LT(meshes::volume(r.positions, m.triangles), 0.999 * v0);
     ASSERT_EQ(r.components.size(), 1u);
     EXPECT_EQ(r.components[0].restoration, Restoration::None);
+}
+
+// The normal offset (the default): the restored result is the unrestored one with every vertex
+// moved by one common distance along its area-weighted unit normal, the volume is exact, and on
+// a torus, whose outer rim is far from its centroid, the correction is much smaller than the
+// paper's scaling (by the area-weighted norm that the offset minimizes to first order).
+TEST(Volume, NormalOffsetIsOneDistanceAlongTheNormals) {
+    const TriangleMesh m = meshes::box_noise(meshes::torus_grid(48, 16), 0.05, 17);
+    const double v0 = meshes::volume(m.positions, m.triangles);
+    for (Operator op : kOperators) {
+        SCOPED_TRACE(fairing::to_string(op));
+        Options o = options(op, 2, 1);
+        o.preserve_volume = false;
+        const fairing::Result raw = fairing::fair(m, {}, o);
+        o.preserve_volume = true;
+        o.restoration = fairing::VolumeRestoration::NormalOffset;
+        const fairing::Result off = fairing::fair(m, {}, o);
+        o.restoration = fairing::VolumeRestoration::Scale;
+        const fairing::Result scaled = fairing::fair(m, {}, o);
+        ASSERT_EQ(off.components.size(), 1u);
+        EXPECT_EQ(off.components[0].restoration, Restoration::NormalOffset);
+        EXPECT_EQ(scaled.components[0].restoration, Restoration::Scale);
+        EXPECT_NEAR(meshes::volume(off.positions, m.triangles), v0, 1e-12 * v0);
+        EXPECT_NEAR(off.volume_after, v0, 1e-12 * v0);
+
+        // Area-weighted unit normals of the unrestored result.
+        Positions normal = Positions::Zero(m.positions.rows(), 3);
+        for (const Triangle& t : m.triangles) {
+            const Vec3 a = meshes::row(raw.positions, t[0]);
+            const Vec3 n = (meshes::row(raw.positions, t[1]) - a).cross(meshes::row(raw.positions, t[2]) - a);
+            for (int v : t) normal.row(v) += n.transpose();
+        }
+        normal.rowwise().normalize();
+        const Positions d = off.positions - raw.positions;
+        const double t0 = d.row(0).dot(normal.row(0));
+        EXPECT_GT(t0, 0);  // the step shrank the torus: the offset is outwards
+        for (int i = 0; i < d.rows(); ++i) {
+            EXPECT_NEAR(d.row(i).dot(normal.row(i)), t0, 1e-9 * std::abs(t0));
+            EXPECT_LT((d.row(i) - t0 * normal.row(i)).norm(), 1e-9 * std::abs(t0));
+        }
+        const double moved_offset = d.norm(), moved_scale = (scaled.positions - raw.positions).norm();
+        EXPECT_LT(moved_offset, 0.5 * moved_scale);
+    }
+}
+
+// A gross loss (a strong first-order step collapsing much of the sphere) would fold an offset
+// surface over itself: past kMaxOffsetChange the default scales, and says so.
+TEST(Volume, GrossLossIsScaledEvenWithTheNormalOffset) {
+    const TriangleMesh m = meshes::radial_noise(meshes::icosphere(2), 0.1, 5);
+    const double v0 = meshes::volume(m.positions, m.triangles);
+    for (double time_step : {0.01, 100.0}) {
+        SCOPED_TRACE(time_step);
+        Options o = options(Operator::CurvatureFlow, 1, 1, time_step);
+        o.preserve_volume = false;
+        const double lost = 1 - meshes::volume(fairing::fair(m, {}, o).positions, m.triangles) / v0;
+        o.preserve_volume = true;
+        o.restoration = fairing::VolumeRestoration::NormalOffset;
+        const fairing::Result r = fairing::fair(m, {}, o);
+        EXPECT_NEAR(meshes::volume(r.positions, m.triangles), v0, 1e-12 * v0);
+        if (time_step < 1) {
+            EXPECT_LT(lost, 0.5 * fairing::kMaxOffsetChange);
+            EXPECT_EQ(r.components[0].restoration, Restoration::NormalOffset);
+        } else {
+            EXPECT_GT(lost, 2 * fairing::kMaxOffsetChange);
+            EXPECT_EQ(r.components[0].restoration, Restoration::Scale);
+        }
+    }
 }

@@ -136,6 +136,11 @@ void addFilterParameters(CLI::App& app, CommandLine& cl, const Values& d)
     app.add_flag("--no-volume", cl.noVolume,
                  "[preserveVolume=false] Do not restore the volume of closed components after "
                  "each step (sections 3.1-3.2). Default: volume preserved");
+    addChoice(app, "--volume-restoration", cl.volumeRestoration,
+              "How the volume is restored: offset (every free vertex moves one distance along "
+              "its normal, the smallest correction; a loss above 10 % is scaled; what the "
+              "filters do) or scale (section 3.2: about the centroid). Default: offset",
+              {"offset", "scale"}, "HOW");
     app.add_flag("--area", cl.area,
                  "[openInvariant=Area] Restore the surface area of open components (which "
                  "enclose no volume) after each step. Default: open components are not restored");
@@ -246,6 +251,8 @@ Values filterValues(const CommandLine& cl)
     v.order = cl.order - 1;
     v.integration = cl.normalized ? 2 : cl.explicitIntegration ? 1 : 0;
     v.preserveVolume = !cl.noVolume;
+    v.volumeRestoration = cl.volumeRestoration == "scale" ? fairing::VolumeRestoration::Scale
+                                                          : fairing::VolumeRestoration::NormalOffset;
     v.openInvariant = cl.area ? 1 : 0;
     v.boundaryMode = cl.boundary == "curve" ? 1 : cl.boundary == "virtual" ? 2 : 0;
     v.qualityWeights = cl.qualityWeights;

@@ -23,6 +23,7 @@ struct CommandLine {
     bool explicitIntegration = false, normalized = false;
     bool noVolume = false, area = false;
     std::string boundary = "fixed";          // fixed | curve | virtual
+    std::string volumeRestoration = "offset";  // offset | scale
     bool qualityWeights = false, invertWeights = false;
     bool freeze = false;
     double tolerance = 0;

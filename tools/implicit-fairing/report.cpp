@@ -55,6 +55,9 @@ std::string jsonReport(const RunFacts& f)
     j["residual"] = r.max_residual;
     j["volume_before"] = r.volume_before;
     j["volume_after"] = r.volume_after;
+    j["volume_restoration"] = nlohmann::json::array();  // per component, how it was restored
+    for (const fairing::ComponentReport& c : r.components)
+        j["volume_restoration"].push_back(fairing::to_string(c.restoration));
     j["vertices_moved"] = r.vertices_moved;
     j["vertices_fixed"] = r.vertices_fixed;
     j["merged_vertices"] = f.loaded.merged;

@@ -59,6 +59,20 @@ enum class OpenInvariant {
     Area,  // surface area (section 3.2's "preserve the surface area if the mesh is non-closed").
 };
 
+// How a closed component's volume (or, with OpenInvariant::Area, an open one's area) is brought
+// back after a step.
+enum class VolumeRestoration {
+    // Every free vertex moves along its area-weighted unit normal by one common distance t,
+    // solved to machine precision: to first order the smallest correction (area-weighted
+    // L2) that restores the volume. On a sphere it is the paper's scaling; on thin parts and
+    // tori it is not: scaling about the centroid moves far parts most whatever shrank
+    // (bench/results/denoise.md, "Volume restoration").
+    NormalOffset,
+    // Section 3.2: scale about the centroid by beta = (V0/Vn)^(1/3). A component with fixed
+    // vertices still gets the normal offset, so fixed vertices stay where they are.
+    Scale,
+};
+
 enum class ResidualNorm { L2, LInfinity };  // Appendix A.2.
 
 // How the conjugate gradients are preconditioned (see solver.h).
@@ -115,10 +129,13 @@ struct Options {
     // in [-2, 0], so time_step is dimensionless and up to 1 is stable).
     bool normalized = false;
     BoundaryMode boundary = BoundaryMode::Fixed;
-    // Sections 3.1-3.2: after each step rescale every closed component by (V0/Vn)^(1/3) about
-    // its centroid. A component with fixed vertices is restored by a uniform offset of its free
-    // vertices along their normals instead, so fixed vertices stay where they are.
+    // Sections 3.1-3.2: after each step restore the volume of every closed component, by
+    // `restoration`. Steps on a frozen operator (freeze_operator, the umbrella) are one linear
+    // filter, and NormalOffset restores once, after the last: offsets after each step would add
+    // up to it but for the small change of the normals between steps, and the steps can then be
+    // taken at once (src/frozen_steps.h).
     bool preserve_volume = true;
+    VolumeRestoration restoration = VolumeRestoration::NormalOffset;
     OpenInvariant open_invariant = OpenInvariant::None;
     // Solver (Appendix A): stop when ||A X - b|| < tolerance ||b|| for x, y and z. b is the
     // mass-weighted position of the centred mesh, so 1e-8 leaves an error far below an edge.
@@ -169,7 +186,8 @@ struct SolveReport {
 enum class Restoration {
     None,            // nothing restored (switched off, or open component with OpenInvariant::None)
     Scale,           // rescaled about the component's centroid (eq. 10 and section 3.2)
-    NormalOffset,    // free vertices offset along their normals (the component has fixed vertices)
+    NormalOffset,    // free vertices offset along their normals (VolumeRestoration::NormalOffset,
+                     // or the component has fixed vertices)
     Unchanged,       // every vertex of the component is fixed
 };
 

@@ -23,12 +23,20 @@ double component_area(const HalfEdgeMesh& mesh, const Component& component,
 Vec3 component_centroid(const HalfEdgeMesh& mesh, const Component& component,
                         const Positions& positions);
 
+// The largest relative change of the measure VolumeRestoration::NormalOffset restores by an
+// offset on a component without fixed vertices; beyond it (a collapsing component, whose offset
+// surface would fold over itself) the component is scaled.
+constexpr double kMaxOffsetChange = 0.1;
+
 // Restores `target` (volume for closed components, area for open ones) on one component.
-// Without fixed vertices: scales about the centroid (the solid's for volume, the surface's for
-// area) by (target/now)^(1/3) or ^(1/2). With fixed vertices: offsets every free vertex of the
-// component by t * n_i (area-weighted vertex normal) with t solved to machine precision, so
-// fixed vertices do not move. Returns the method used. Throws Error if no t restores it.
+// With fixed vertices, or with VolumeRestoration::NormalOffset while |target/now - 1| <=
+// kMaxOffsetChange: offsets every free vertex of the component by t * n_i (area-weighted vertex
+// normal) with t solved to machine precision, so fixed vertices do not move. Otherwise (or if no
+// t is found and nothing is fixed): scales about the centroid (the solid's for volume, the
+// surface's for area) by (target/now)^(1/3) or ^(1/2). Returns the method used. Throws Error if
+// a component with fixed vertices cannot be restored.
 Restoration restore_measure(const HalfEdgeMesh& mesh, const Component& component,
-                            const std::vector<char>& free, double target, Positions& positions);
+                            const std::vector<char>& free, double target, Positions& positions,
+                            VolumeRestoration how = VolumeRestoration::NormalOffset);
 
 }  // namespace fairing

@@ -77,6 +77,10 @@ struct Values {
     int order = 1;        // index into orderLabels(): L^2
     int integration = 0;  // index into integrationLabels()
     bool preserveVolume = true;
+    // Not a filter parameter: MeshLab 2020.09's meshlabserver asserts that a script lists every
+    // parameter of the filter, so a new one would break every saved script. The filters use the
+    // engine's default (the normal offset); the command-line tool and the engine offer both.
+    fairing::VolumeRestoration volumeRestoration = fairing::VolumeRestoration::NormalOffset;
     int openInvariant = 0;
     int boundaryMode = 0;
     bool qualityWeights = false;
@@ -120,6 +124,7 @@ inline fairing::Options toOptions(fairing::Operator op, const Values& v) {
                                      : fairing::Integration::Explicit;
     o.normalized = integration == 2;
     o.preserve_volume = v.preserveVolume;
+    o.restoration = v.volumeRestoration;
     o.open_invariant = index(v.openInvariant, openInvariantLabels(), kOpenInvariant) == 1
                            ? fairing::OpenInvariant::Area
                            : fairing::OpenInvariant::None;
