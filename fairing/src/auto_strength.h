@@ -49,8 +49,16 @@
 //   first, so that for every lambda at once div(lambda) = N - b . (r'(lambda) - r(lambda)) / eps
 //   (r: the movement, f = y - r). It replaces the Hutchinson probes, at the same cost.
 //
-// Limits: with a recomputed operator (steps > 1, not frozen) the frozen-operator model is only
-// approximate.
+// - Several steps: with a recomputed operator (steps > 1, not frozen) only the first step's
+//   weights come from the noisy mesh; the later ones come from a smoothed mesh and damage a
+//   smooth shape less (a sphere is a fixed point of the curvature flow with its volume restored)
+//   or, on scans whose noisy weights held the first step back, more. The s steps are modelled
+//   as s steps on their mean operator: one s-th the operator at the data, the rest the operator
+//   at a lightly smoothed copy of it (StrengthProblem::pilot; K and M are linear in the weights
+//   and masses, so the mean is one symmetric operator and one Lanczos process serves). The
+//   Monte-Carlo divergence perturbs the data and builds the same mean at the perturbed data.
+//
+// Limits: the several-step model is an approximation (bench/results/denoise.md measures it).
 //
 // Conventions: lambda is the dimensionless time step of Options::time_step (C is scaled by the
 // operator's length unit); rows at or past `data_vertices` (virtual vertices) move with the
@@ -92,6 +100,9 @@ struct StrengthProblem {
     // operators whose weights depend on the positions (eq. 11, eq. 14); empty for the umbrella,
     // whose filter is linear in the data. See "Divergence" above.
     std::function<SparseOperator(const Positions&)> assemble_at;
+    // Several steps that recompute those weights (steps >= 2, not frozen): model them on the
+    // steps' mean operator ("Several steps" above). Needs assemble_at.
+    bool pilot = false;
 };
 
 struct StrengthEstimate {
