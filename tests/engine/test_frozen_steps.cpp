@@ -33,6 +33,12 @@ constexpr Operator kOperators[] = {Operator::Umbrella, Operator::ScaleDependent,
 // matters.
 TriangleMesh lumpy_sphere() { return meshes::radial_noise(meshes::icosphere(2), 0.08, 21); }
 
+// The lumpy sphere and a smaller noisy one beside it: two closed components.
+TriangleMesh two_lumpy_spheres() {
+    const TriangleMesh small = meshes::scaled(meshes::radial_noise(meshes::icosphere(2), 0.1, 8), 0.5);
+    return meshes::merge(lumpy_sphere(), meshes::translated(small, fairing::Vec3(3, 0.5, 0)));
+}
+
 Options frozen(Operator op, int order, double time_step, int steps) {
     Options o;
     o.op = op;
@@ -73,6 +79,15 @@ void expect_at_once(const fairing::Result& r, int steps) {
     EXPECT_TRUE(r.solves[0].converged);
     EXPECT_EQ(r.steps, steps);
     EXPECT_GT(r.total_iterations, 0);
+}
+
+// Both components of two_lumpy_spheres() restored by `how` to their volume.
+void expect_two_components_kept(const fairing::Result& r, fairing::Restoration how) {
+    ASSERT_EQ(r.components.size(), 2u);
+    for (const auto& c : r.components) {
+        EXPECT_EQ(c.restoration, how);
+        EXPECT_NEAR(c.measure_after, c.measure_before, 1e-12 * c.measure_before);
+    }
 }
 
 }  // namespace
@@ -332,21 +347,13 @@ TEST(FrozenSteps, SmoothBoundaryCurveOneByOne) {
 
 // Two closed components, each rescaled about its own centroid after every step.
 TEST(FrozenSteps, TwoComponentsKeepTheirOwnVolume) {
-    const TriangleMesh m = meshes::merge(
-        lumpy_sphere(), meshes::translated(meshes::scaled(meshes::radial_noise(
-                                                              meshes::icosphere(2), 0.1, 8),
-                                                          0.5),
-                                           fairing::Vec3(3, 0.5, 0)));
+    const TriangleMesh m = two_lumpy_spheres();
     Options o = frozen(Operator::CurvatureFlow, 2, 6.0, 4);
     o.preserve_volume = true;
     o.restoration = fairing::VolumeRestoration::Scale;
     const fairing::Result at_once = fairing::fair(m, {}, o);
     expect_at_once(at_once, 4);
-    ASSERT_EQ(at_once.components.size(), 2u);
-    for (const auto& c : at_once.components) {
-        EXPECT_EQ(c.restoration, fairing::Restoration::Scale);
-        EXPECT_NEAR(c.measure_after, c.measure_before, 1e-12 * c.measure_before);
-    }
+    expect_two_components_kept(at_once, fairing::Restoration::Scale);
     o.preconditioner = fairing::Preconditioner::Jacobi;
     const fairing::Result one_by_one = fairing::fair(m, {}, o);
     expect_one_by_one(one_by_one, 4);
@@ -355,13 +362,9 @@ TEST(FrozenSteps, TwoComponentsKeepTheirOwnVolume) {
 
 // The default normal offset follows a frozen operator's steps once, after the last (fairing.h,
 // Options::preserve_volume): at once, one by one (Jacobi) and the dense steps followed by one
-// offset agree; each component keeps its volume, fixed vertices included.
+// offset agree, and each component keeps its volume.
 TEST(FrozenSteps, NormalOffsetOnceAfterTheLastStep) {
-    const TriangleMesh m = meshes::merge(
-        lumpy_sphere(), meshes::translated(meshes::scaled(meshes::radial_noise(
-                                                              meshes::icosphere(2), 0.1, 8),
-                                                          0.5),
-                                           fairing::Vec3(3, 0.5, 0)));
+    const TriangleMesh m = two_lumpy_spheres();
     const HalfEdgeMesh he = HalfEdgeMesh::build(m.positions, m.triangles);
     for (Operator op : kOperators) {
         SCOPED_TRACE(fairing::to_string(op));
@@ -369,11 +372,7 @@ TEST(FrozenSteps, NormalOffsetOnceAfterTheLastStep) {
         o.preserve_volume = true;
         const fairing::Result at_once = fairing::fair(m, {}, o);
         expect_at_once(at_once, 4);
-        ASSERT_EQ(at_once.components.size(), 2u);
-        for (const auto& c : at_once.components) {
-            EXPECT_EQ(c.restoration, fairing::Restoration::NormalOffset);
-            EXPECT_NEAR(c.measure_after, c.measure_before, 1e-12 * c.measure_before);
-        }
+        expect_two_components_kept(at_once, fairing::Restoration::NormalOffset);
         const SparseOperator k0 = fairing::assemble(op, he, m.positions);
         Positions x = dense_steps(he, k0, m.positions, at_once.lambda_dt, 2, 4, false);
         const std::vector<char> all(m.positions.rows(), 1);
