@@ -317,8 +317,9 @@ LinearSystem Run::system_for(const SparseOperator& op, const std::vector<char>& 
 // restored component either rescaled whole (all its vertices free: the filter then keeps
 // constants on it and the rescaling commutes with it up to a translation the process replays) or
 // not moving; a normal offset after each step (fixed vertices) is not linear. With
-// VolumeRestoration::NormalOffset the volume is restored once, after the last step. Anywhere else, or when the Lanczos process gives up, the steps are
-// taken one by one as before (false, x_ untouched). A rescaled run keeps the intermediate
+// VolumeRestoration::NormalOffset the volume is restored once, after the last step. Anywhere
+// else, or when the Lanczos process gives up, the steps are taken one by one as before (false,
+// x_ untouched). A rescaled run keeps the intermediate
 // results, 12 bytes per vertex and step (24 when single precision is not enough), hence the cap.
 bool Run::take_frozen_steps(double lambda_dt, int steps) {
     constexpr int kMaxRescaledSteps = 17;

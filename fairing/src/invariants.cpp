@@ -91,21 +91,26 @@ void scale_component(const HalfEdgeMesh& mesh, const Component& component, bool 
 bool offset_component(const HalfEdgeMesh& mesh, const Component& component, bool volume,
                       const std::vector<char>& free, double sign, double target, double now,
                       Positions& x) {
-    std::vector<Vec3> normal(x.rows(), Vec3::Zero());
+    // Per vertex of the component only (its index in component.vertices), so that a mesh of
+    // many small components costs their sizes, not the mesh's size per component.
+    thread_local std::vector<int> local;
+    if (local.size() < static_cast<std::size_t>(x.rows())) local.resize(x.rows(), -1);
+    for (std::size_t k = 0; k < component.vertices.size(); ++k) local[component.vertices[k]] = static_cast<int>(k);
+    std::vector<Vec3> normal(component.vertices.size(), Vec3::Zero());
     for (int f : component.faces) {
         const Triangle& t = mesh.faces()[f];
         const Vec3 a = detail::row(x, t[0]), b = detail::row(x, t[1]), c = detail::row(x, t[2]);
         const Vec3 area_normal = (b - a).cross(c - a);
-        for (int v : t) normal[v] += area_normal;
+        for (int v : t) normal[local[v]] += area_normal;
     }
-    for (int v : component.vertices) {
-        const double length = normal[v].norm();
-        normal[v] = free[v] && length > 0 ? Vec3(normal[v] / length) : Vec3::Zero();
+    for (std::size_t k = 0; k < component.vertices.size(); ++k) {
+        const double length = normal[k].norm();
+        normal[k] = free[component.vertices[k]] && length > 0 ? Vec3(normal[k] / length) : Vec3::Zero();
     }
     const Vec3 o = detail::row(x, component.vertices.front());
     const std::function<double(double)> residual = [&](double t) {
         return sign * measure(mesh, component, volume, o,
-                              [&](int v) { return Vec3(detail::row(x, v) + t * normal[v]); }) -
+                              [&](int v) { return Vec3(detail::row(x, v) + t * normal[local[v]]); }) -
                target;
     };
     const double length_scale = std::pow(now, volume ? 1.0 / 3.0 : 0.5);
@@ -122,10 +127,13 @@ bool offset_component(const HalfEdgeMesh& mesh, const Component& component, bool
         t1 = t2;
         f1 = residual(t1);
     }
-    if (!std::isfinite(t1) || std::abs(f1) > 1e-12 * target) return false;
-    for (int v : component.vertices)
-        if (free[v]) x.row(v) += t1 * normal[v].transpose();
-    return true;
+    const bool found = std::isfinite(t1) && std::abs(f1) <= 1e-12 * target;
+    for (std::size_t k = 0; k < component.vertices.size(); ++k) {
+        const int v = component.vertices[k];
+        if (found && free[v]) x.row(v) += t1 * normal[k].transpose();
+        local[v] = -1;
+    }
+    return found;
 }
 
 }  // namespace
