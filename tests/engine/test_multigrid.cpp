@@ -204,6 +204,29 @@ TEST(Multigrid, IterationsStayBoundedAsTheTimeStepGrows) {
     }
 }
 
+// Automatic stays on the complex Jacobi path below 50,000 vertices; when that solve runs out of
+// half the cap (on needles it can stall, solver.cpp), the V-cycle takes over from where it
+// stopped, with the rest. Here a strong L^2 step and a cap of 120: the Jacobi path needs more
+// than 60, the V-cycle about 43 in all (above).
+TEST(Multigrid, AutomaticHandsAnUnconvergedSolveToTheVCycle) {
+    const Case c = make(meshes::radial_noise(meshes::icosphere(5), 0.05, 23),
+                        Operator::CurvatureFlow);
+    const LinearSystem s = system(c, 2, lambda(c, Operator::CurvatureFlow, 2, 256 * 22.5),
+                                  std::vector<char>(c.op.size(), 1));
+    fairing::SolveSettings settings;
+    settings.tolerance = 1e-10;
+    settings.max_iterations = 120;
+    Positions x = c.mesh.positions;
+    const fairing::SolveStats stats = fairing::solve(s, x, settings);
+    EXPECT_TRUE(stats.converged);
+    EXPECT_TRUE(stats.multigrid);
+    EXPECT_GT(stats.iterations, 60);  // the Jacobi path used its half
+    EXPECT_LE(stats.iterations, settings.max_iterations);
+    EXPECT_LT(stats.residual, 1e-10);
+    const Solved mg = solve(c, s, Preconditioner::Multigrid);
+    EXPECT_LT(meshes::max_row_distance(x, mg.x), 1e-7 * c.h);
+}
+
 TEST(Multigrid, BitIdenticalOnOneAndTwoThreads) {
     // 40,962 vertices: ten blocks of the fixed-order sums, and the finest level's rows split
     // over the two threads.
