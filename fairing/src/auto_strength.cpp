@@ -149,6 +149,11 @@ double estimate_noise(const SparseOperator& op, const HalfEdgeMesh& mesh, const 
 
 namespace {
 
+// w_i of a row: 1 off the data rows and without soft weights.
+double soft_weight(const StrengthProblem& p, int i) {
+    return i < p.data_vertices && p.weight ? (*p.weight)[i] : 1.0;
+}
+
 // The filter of `steps` steps of lambda each (fair() gives every step the whole time step).
 struct Filter {
     double lambda = 0;
@@ -425,7 +430,7 @@ std::unique_ptr<Perturbation> perturb(const Context& ctx, const Positions& norma
     for (int i = 0; i < ctx.n; ++i) {
         if (!(*p.free)[i]) continue;
         if (!(mc->op.mass[i] > 0)) return nullptr;
-        mc->ctx->d[i] = mc->op.mass[i] / (i < p.data_vertices ? (*p.weight)[i] : 1.0);
+        mc->ctx->d[i] = mc->op.mass[i] / soft_weight(p, i);
     }
     start_movement(*mc->ctx, mc->u);
     mc->x.resize(0, 3);  // only the start vector needed the perturbed positions
@@ -798,7 +803,7 @@ StrengthEstimate estimate_strength(const StrengthProblem& p) {
     double count = 0;  // data rows
     for (int i = 0; i < ctx.n; ++i) {
         if (!(*p.free)[i]) continue;
-        ctx.d[i] = p.op->mass[i] / (i < p.data_vertices ? (*p.weight)[i] : 1.0);
+        ctx.d[i] = p.op->mass[i] / soft_weight(p, i);
         if (i >= p.data_vertices) continue;
         ctx.data[i] = 1;
         ++count;
