@@ -315,6 +315,9 @@ void start_movement(Context& ctx, Lanczos& u) {
     filter_c.order = ctx.p.order;
     filter_c.lambda_dt = ctx.p.length_unit;
     filter_c.apply(*ctx.p.x, u.product, ctx.scratch);
+    // The processes' own products need the scratch vector only for L^2 (apply_dot); on C1
+    // (Context::squared, the default) it would sit unused through the search.
+    if (ctx.c.order == 1) ctx.scratch.resize(0, 3);
     std::array<double, 3> su{{0, 0, 0}};
     for (int i = 0; i < n; ++i) {
         if (!(*ctx.p.free)[i]) continue;
@@ -353,7 +356,9 @@ void start_probes(Context& ctx, Lanczos& z, double count) {
 // Lanczos process, and the probe's functional b n . v_j of both processes' basis vectors.
 struct Perturbation {
     double eps = 0;
-    Positions probe;  // b_i n_i on the data rows, 0 elsewhere
+    // b_i on the data rows, 0 elsewhere: the probe is b_i n_i, multiplied out where used
+    // rather than kept (24 bytes per vertex).
+    std::vector<signed char> sign;
     Positions x;
     SparseOperator op;
     StrengthProblem problem;
@@ -363,12 +368,14 @@ struct Perturbation {
 };
 
 // Appends b n . v_j for the current basis vector of every active column (serial: the same sum
-// on any number of threads).
-void record(const Lanczos& l, const Positions& probe, std::array<std::vector<double>, 3>& w) {
+// on any number of threads). Rows off the data add nothing.
+void record(const Lanczos& l, const std::vector<signed char>& sign, const Positions& normals,
+            std::array<std::vector<double>, 3>& w) {
     for (int c = 0; c < 3; ++c) {
         if (!l.active[c]) continue;
         double sum = 0;
-        for (Eigen::Index i = 0; i < probe.rows(); ++i) sum += probe(i, c) * l.current(i, c);
+        for (std::size_t i = 0; i < sign.size(); ++i)
+            if (sign[i]) sum += sign[i] * normals(i, c) * l.current(i, c);
         w[c].push_back(sum);
     }
 }
@@ -411,18 +418,20 @@ std::unique_ptr<Perturbation> perturb(const Context& ctx, const Positions& norma
     if (!p.assemble_at) return nullptr;
     auto mc = std::make_unique<Perturbation>();
     mc->eps = kPerturbation * sigma;
-    mc->probe.setZero(ctx.n, 3);
+    mc->sign.assign(ctx.n, 0);
     mc->x = *p.x;
     for (int i = 0; i < p.data_vertices; ++i) {
         if (!ctx.data[i]) continue;
-        const double b = mix(static_cast<std::uint64_t>(i) ^ 0x27d4eb2f165667c5ull) & 1 ? 1.0 : -1.0;
-        mc->probe.row(i) = b * normals.row(i);
-        mc->x.row(i) += mc->eps * mc->probe.row(i);
+        const bool plus = mix(static_cast<std::uint64_t>(i) ^ 0x27d4eb2f165667c5ull) & 1;
+        mc->sign[i] = plus ? 1 : -1;
+        const Eigen::RowVector3d probe = (plus ? 1.0 : -1.0) * normals.row(i);
+        mc->x.row(i) += mc->eps * probe;
     }
     mc->op = p.assemble_at(mc->x);
     mc->op.threads = p.op->threads;
     if (mc->op.size() != p.op->size()) return nullptr;
     mc->problem = p;
+    std::vector<int>().swap(mc->problem.restored);  // the restoration is the outer problem's
     mc->problem.op = &mc->op;
     mc->problem.x = &mc->x;
     mc->ctx.reset(new Context{mc->problem, ctx.c, ctx.d, ctx.data, Positions(), ctx.n, ctx.squared});
@@ -687,8 +696,8 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sk
         const bool z_active = !mc && (z.active[0] || z.active[1] || z.active[2]);
         const bool mc_active = mc && (mc->u.active[0] || mc->u.active[1] || mc->u.active[2]);
         if (u_active) sketch.add(u, normals);
-        if (u_active && mc) record(u, mc->probe, mc->w);
-        if (mc_active) record(mc->u, mc->probe, mc->w_perturbed);
+        if (u_active && mc) record(u, mc->sign, normals, mc->w);
+        if (mc_active) record(mc->u, mc->sign, normals, mc->w_perturbed);
         if (u_active) step(ctx, u, j);
         if (z_active) step(ctx, z, j);
         if (mc_active) step(*mc->ctx, mc->u, j);
@@ -786,9 +795,11 @@ StrengthEstimate estimate_strength(const StrengthProblem& p) {
     // ~25 degrees at half an edge), which hides part of it from the normal components.
     const Positions normals =
         robust_normals(*p.mesh, smoothed_copy(*p.op, *p.x, p.data_vertices, kSmoothingPasses));
-    std::vector<char> use(p.data_vertices, 0);
-    for (int i = 0; i < p.data_vertices; ++i) use[i] = (*p.free)[i];
-    e.noise_level = estimate_noise(*p.op, *p.mesh, *p.x, normals, use);
+    {
+        std::vector<char> use(p.data_vertices, 0);
+        for (int i = 0; i < p.data_vertices; ++i) use[i] = (*p.free)[i];
+        e.noise_level = estimate_noise(*p.op, *p.mesh, *p.x, normals, use);
+    }
     if (!(e.noise_level > 0)) return e;
 
     Context ctx{p, LinearSystem{}, {}, {}, Positions(), p.op->size()};

@@ -550,15 +550,15 @@ SolveStats solve_complex(const LinearSystem& system, Positions& x, const Positio
                          bool multigrid) {
     SolveStats stats;
     stats.complex_factor = true;
-    detail::ComplexFactorSolver solver(system);
+    // The hierarchy first: its set-up's work space is gone before the solver's vectors come.
     std::unique_ptr<detail::Multigrid> cycle;
     if (multigrid) {
         cycle = std::make_unique<detail::Multigrid>(*system.op, system.diagonal, system.free,
                                                     std::sqrt(system.lambda_dt),
                                                     detail::Multigrid::Kind::Complex);
-        solver.use_preconditioner(cycle.get());
         stats.multigrid = true;
     }
+    detail::ComplexFactorSolver solver(system, cycle.get());
     Progress progress(settings, goal);
     std::array<bool, 3> active{false, false, false};
     Column3 rn{0, 0, 0};
