@@ -149,11 +149,6 @@ double estimate_noise(const SparseOperator& op, const HalfEdgeMesh& mesh, const 
 
 namespace {
 
-// w_i of a row: 1 off the data rows and without soft weights.
-double soft_weight(const StrengthProblem& p, int i) {
-    return i < p.data_vertices && p.weight ? (*p.weight)[i] : 1.0;
-}
-
 // The filter of `steps` steps of lambda each (fair() gives every step the whole time step).
 struct Filter {
     double lambda = 0;
@@ -174,8 +169,7 @@ struct Lanczos {
 
 struct Context {
     const StrengthProblem& p;
-    LinearSystem c;           // lambda_dt = length_unit, diagonal 0: apply() is unit * C
-    std::vector<double> d;    // D_i on free rows, 1 elsewhere
+    LinearSystem c;           // lambda_dt = length_unit, no diagonal (D = 0): apply() is unit * C
     std::vector<char> data;   // free data rows: they count in the risk and the trace
     Positions scratch;
     int n = 0;
@@ -187,6 +181,12 @@ struct Context {
     // Lanczos steps).
     bool squared = false;
 };
+
+// D_i = M_i / w_i of a free row, computed where needed rather than kept (8 bytes per vertex and
+// process): the same division gives the same bits every time.
+double d_of(const StrengthProblem& p, int i) {
+    return p.weight && i < p.data_vertices ? p.op->mass[i] / (*p.weight)[i] : p.op->mass[i];
+}
 
 Filter filter_at(const Context& ctx, double lambda) {
     return Filter{lambda, ctx.p.steps, ctx.p.explicit_integration, ctx.squared};
@@ -208,19 +208,20 @@ void advance(Context& ctx, Lanczos& l, int j, bool measure) {
         a[c] = l.alpha[c][j];
         b[c] = j > 0 ? l.beta[c][j - 1] : 0.0;
     }
-    const double* d = ctx.d.data();
-    const char* f = ctx.p.free->data();
+    const StrengthProblem& p = ctx.p;
+    const char* f = p.free->data();
     double* prev = l.previous.data();
     const double* cur = l.current.data();
     const double* prod = l.product.data();
-    const int threads = ctx.p.op->threads;
+    const int threads = p.op->threads;
     // Summed in fixed blocks (kernels.h), so the same on any number of threads.
-    const std::array<double, 3> sums = blocked_sum<3>(n, threads, [=](int i, double* acc) {
+    const std::array<double, 3> sums = blocked_sum<3>(n, threads, [=, &p](int i, double* acc) {
         if (!f[i]) return;
+        const double d = d_of(p, i);
         for (int c = 0; c < 3; ++c) {
-            const double w = prod[3 * i + c] / d[i] - a[c] * cur[3 * i + c] - b[c] * prev[3 * i + c];
+            const double w = prod[3 * i + c] / d - a[c] * cur[3 * i + c] - b[c] * prev[3 * i + c];
             prev[3 * i + c] = w;
-            acc[c] += d[i] * w * w;
+            acc[c] += d * w * w;
         }
     });
     for (int c = 0; c < 3; ++c) {
@@ -323,8 +324,8 @@ void start_movement(Context& ctx, Lanczos& u) {
         if (!(*ctx.p.free)[i]) continue;
         for (int c = 0; c < 3; ++c) {
             const double v = u.product(i, c);
-            su[c] += v * v / ctx.d[i];
-            u.current(i, c) = v / ctx.d[i];
+            su[c] += v * v / d_of(ctx.p, i);
+            u.current(i, c) = v / d_of(ctx.p, i);
         }
     }
     for (int c = 0; c < 3; ++c) {
@@ -342,7 +343,7 @@ void start_probes(Context& ctx, Lanczos& z, double count) {
     for (int i = 0; i < n; ++i) {
         if (!ctx.data[i]) continue;
         const std::uint64_t bits = mix(static_cast<std::uint64_t>(i));
-        for (int c = 0; c < 3; ++c) z.current(i, c) = ((bits >> c) & 1 ? 1.0 : -1.0) / std::sqrt(ctx.d[i]);
+        for (int c = 0; c < 3; ++c) z.current(i, c) = ((bits >> c) & 1 ? 1.0 : -1.0) / std::sqrt(d_of(ctx.p, i));
     }
     for (int c = 0; c < 3; ++c) {
         z.start_norm[c] = std::sqrt(count);
@@ -434,12 +435,11 @@ std::unique_ptr<Perturbation> perturb(const Context& ctx, const Positions& norma
     std::vector<int>().swap(mc->problem.restored);  // the restoration is the outer problem's
     mc->problem.op = &mc->op;
     mc->problem.x = &mc->x;
-    mc->ctx.reset(new Context{mc->problem, ctx.c, ctx.d, ctx.data, Positions(), ctx.n, ctx.squared});
+    mc->ctx.reset(new Context{mc->problem, ctx.c, ctx.data, Positions(), ctx.n, ctx.squared});
     mc->ctx->c.op = &mc->op;
     for (int i = 0; i < ctx.n; ++i) {
         if (!(*p.free)[i]) continue;
         if (!(mc->op.mass[i] > 0)) return nullptr;
-        mc->ctx->d[i] = mc->op.mass[i] / soft_weight(p, i);
     }
     start_movement(*mc->ctx, mc->u);
     mc->x.resize(0, 3);  // only the start vector needed the perturbed positions
@@ -802,26 +802,22 @@ StrengthEstimate estimate_strength(const StrengthProblem& p) {
     }
     if (!(e.noise_level > 0)) return e;
 
-    Context ctx{p, LinearSystem{}, {}, {}, Positions(), p.op->size()};
+    Context ctx{p, LinearSystem{}, {}, Positions(), p.op->size()};
     ctx.c.op = p.op;
     ctx.c.free = *p.free;
     ctx.c.lambda_dt = p.length_unit;
     ctx.c.order = p.order;
     ctx.squared = p.order == 2 && !p.explicit_integration;
-    ctx.c.diagonal.assign(ctx.n, 0.0);
-    ctx.d.assign(ctx.n, 1.0);
     ctx.data.assign(ctx.n, 0);
     double count = 0;  // data rows
     for (int i = 0; i < ctx.n; ++i) {
-        if (!(*p.free)[i]) continue;
-        ctx.d[i] = p.op->mass[i] / soft_weight(p, i);
-        if (i >= p.data_vertices) continue;
+        if (!(*p.free)[i] || i >= p.data_vertices) continue;
         ctx.data[i] = 1;
         ++count;
     }
     if (count == 0) return e;
     for (int i = 0; i < ctx.n && ctx.squared; ++i)
-        if ((*p.free)[i] && !(ctx.d[i] == p.op->mass[i])) ctx.squared = false;  // soft weights
+        if ((*p.free)[i] && !(d_of(p, i) == p.op->mass[i])) ctx.squared = false;  // soft weights
     if (ctx.squared) {
         ctx.c.order = 1;
         ctx.c.lambda_dt = std::sqrt(p.length_unit);
