@@ -159,9 +159,10 @@ struct Filter {
 
 // Three independent Lanczos processes on G (one per column), in the coordinates q = D^-1/2 v,
 // where G v = D^-1/2 C q and the inner product is <a, b>_D = sum_free D_i a_i b_i. Never more
-// than two basis vectors are kept.
+// than two basis vectors are kept. The product with the operator lives only within a step, so
+// the processes, which step in turn, share one (search()).
 struct Lanczos {
-    Positions previous, current, product;
+    Positions previous, current;
     std::array<std::vector<double>, 3> alpha, beta;  // beta[j] joins basis vectors j and j+1
     std::array<double, 3> start_norm{{0, 0, 0}};
     std::array<bool, 3> active{{true, true, true}};
@@ -193,14 +194,14 @@ Filter filter_at(const Context& ctx, double lambda) {
 }
 
 // product = unit * C current; returns alpha = <current, D^-1 product>_D per column.
-std::array<double, 3> multiply(Context& ctx, Lanczos& l) {
-    return ctx.c.apply_dot(l.current, l.product, ctx.scratch);
+std::array<double, 3> multiply(Context& ctx, Lanczos& l, Positions& product) {
+    return ctx.c.apply_dot(l.current, product, ctx.scratch);
 }
 
 // One recurrence step given alpha_j and beta_{j-1}: previous <- the next basis vector. With
 // `measure`, beta_j is measured and stored, else taken from what is stored (the second pass
 // regenerates the first pass's basis bit for bit).
-void advance(Context& ctx, Lanczos& l, int j, bool measure) {
+void advance(Context& ctx, Lanczos& l, int j, bool measure, const Positions& product) {
     const int n = ctx.n;
     std::array<double, 3> a{}, b{}, inverse{};
     for (int c = 0; c < 3; ++c) {
@@ -212,7 +213,7 @@ void advance(Context& ctx, Lanczos& l, int j, bool measure) {
     const char* f = p.free->data();
     double* prev = l.previous.data();
     const double* cur = l.current.data();
-    const double* prod = l.product.data();
+    const double* prod = product.data();
     const int threads = p.op->threads;
     // Summed in fixed blocks (kernels.h), so the same on any number of threads.
     const std::array<double, 3> sums = blocked_sum<3>(n, threads, [=, &p](int i, double* acc) {
@@ -315,7 +316,8 @@ void start_movement(Context& ctx, Lanczos& u) {
     LinearSystem filter_c = ctx.c;  // the filter's own C (Context::squared runs on C1)
     filter_c.order = ctx.p.order;
     filter_c.lambda_dt = ctx.p.length_unit;
-    filter_c.apply(*ctx.p.x, u.product, ctx.scratch);
+    Positions cx;
+    filter_c.apply(*ctx.p.x, cx, ctx.scratch);
     // The processes' own products need the scratch vector only for L^2 (apply_dot); on C1
     // (Context::squared, the default) it would sit unused through the search.
     if (ctx.c.order == 1) ctx.scratch.resize(0, 3);
@@ -323,7 +325,7 @@ void start_movement(Context& ctx, Lanczos& u) {
     for (int i = 0; i < n; ++i) {
         if (!(*ctx.p.free)[i]) continue;
         for (int c = 0; c < 3; ++c) {
-            const double v = u.product(i, c);
+            const double v = cx(i, c);
             su[c] += v * v / d_of(ctx.p, i);
             u.current(i, c) = v / d_of(ctx.p, i);
         }
@@ -447,11 +449,11 @@ std::unique_ptr<Perturbation> perturb(const Context& ctx, const Positions& norma
 }
 
 // One Lanczos step of a block: alpha measured, then the next vector.
-void step(Context& ctx, Lanczos& l, int j) {
-    const std::array<double, 3> a = multiply(ctx, l);
+void step(Context& ctx, Lanczos& l, int j, Positions& product) {
+    const std::array<double, 3> a = multiply(ctx, l, product);
     for (int c = 0; c < 3; ++c)
         if (l.active[c]) l.alpha[c].push_back(a[c]);
-    advance(ctx, l, j, true);
+    advance(ctx, l, j, true, product);
 }
 
 int argmin(const std::vector<double>& v) {
@@ -691,6 +693,7 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sk
     Curves last;
     double previous_minimizer = 0;
     int next_check = 6;
+    Positions product;  // the processes' products, one at a time
     for (int j = 0; j < kMaxSteps; ++j) {
         const bool u_active = u.active[0] || u.active[1] || u.active[2];
         const bool z_active = !mc && (z.active[0] || z.active[1] || z.active[2]);
@@ -698,9 +701,9 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sk
         if (u_active) sketch.add(u, normals);
         if (u_active && mc) record(u, mc->sign, normals, mc->w);
         if (mc_active) record(mc->u, mc->sign, normals, mc->w_perturbed);
-        if (u_active) step(ctx, u, j);
-        if (z_active) step(ctx, z, j);
-        if (mc_active) step(*mc->ctx, mc->u, j);
+        if (u_active) step(ctx, u, j, product);
+        if (z_active) step(ctx, z, j, product);
+        if (mc_active) step(*mc->ctx, mc->u, j, product);
         if (ctx.p.progress) ctx.p.progress(0.7 * (1 - 16.0 / (16.0 + j)));
         const bool exhausted =
             !(u.active[0] || u.active[1] || u.active[2] ||
