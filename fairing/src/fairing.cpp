@@ -19,6 +19,10 @@
 #include <memory>
 #include <sstream>
 
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
+
 namespace fairing {
 
 const char* to_string(Operator op) {
@@ -93,6 +97,18 @@ void validate(const TriangleMesh& mesh, const Constraints& constraints, const Op
     if (options.normalized && options.integration == Integration::Implicit)
         throw Error("the normalized operators (section 5.5) are meant for explicit integration; "
                     "switch them off for implicit integration");
+}
+
+// Hands the pages of freed blocks back to the system between the phases of a run. glibc serves
+// blocks below its mmap threshold from the heap, and raises that threshold to the size of any
+// large block freed (up to 32 MB), so after the first phase most vectors of a large mesh live on
+// the heap, whose freed holes stay resident: measured on the 1.2 M-face bunny (curvature L^2,
+// automatic time step) 564 bytes per vertex of peak RSS against 507 with a fixed threshold,
+// whatever the phase freed before the solve. A no-op elsewhere.
+void release_free_memory() {
+#ifdef __GLIBC__
+    malloc_trim(0);
+#endif
 }
 
 // Appends the virtual vertex of each boundary loop (section 5.3) at the loop's barycentre and
@@ -729,6 +745,7 @@ Result Run::run() {
                                                   *options_.time_step == 0);
     if (may_step) assemble_surface();
     if (may_step) choose_time_step();
+    if (result_.automatic_time_step) release_free_memory();  // the estimate's vectors
     else time_step_ = options_.time_step.value_or(0);
     take_steps();
     finish(origin);
