@@ -619,6 +619,7 @@ void Run::take_steps() {
         }
         const std::vector<char> free = surface_free();
         for (int i = 0; i < n_; ++i) ever_free_[i] |= free[i];
+        release_free_memory();  // before the solve's vectors: the peak
         integrate(surface_, free, lambda_dt, step, "surface");
         if (!x_.allFinite())
             throw Error("step " + std::to_string(step + 1) +
