@@ -160,9 +160,10 @@ struct Filter {
 
 // Three independent Lanczos processes on G (one per column), in the coordinates q = D^-1/2 v,
 // where G v = D^-1/2 C q and the inner product is <a, b>_D = sum_free D_i a_i b_i. Never more
-// than two basis vectors are kept.
+// than two basis vectors are kept. The product with the operator lives only within a step, so
+// the processes, which step in turn, share one (search()).
 struct Lanczos {
-    Positions previous, current, product;
+    Positions previous, current;
     std::array<std::vector<double>, 3> alpha, beta;  // beta[j] joins basis vectors j and j+1
     std::array<double, 3> start_norm{{0, 0, 0}};
     std::array<bool, 3> active{{true, true, true}};
@@ -170,8 +171,7 @@ struct Lanczos {
 
 struct Context {
     const StrengthProblem& p;
-    LinearSystem c;           // lambda_dt = length_unit, diagonal 0: apply() is unit * C
-    std::vector<double> d;    // D_i on free rows, 1 elsewhere
+    LinearSystem c;           // lambda_dt = length_unit, no diagonal (D = 0): apply() is unit * C
     std::vector<char> data;   // free data rows: they count in the risk and the trace
     Positions scratch;
     int n = 0;
@@ -184,19 +184,25 @@ struct Context {
     bool squared = false;
 };
 
+// D_i = M_i / w_i of a free row, computed where needed rather than kept (8 bytes per vertex and
+// process): the same division gives the same bits every time.
+double d_of(const StrengthProblem& p, int i) {
+    return p.weight && i < p.data_vertices ? p.op->mass[i] / (*p.weight)[i] : p.op->mass[i];
+}
+
 Filter filter_at(const Context& ctx, double lambda) {
     return Filter{lambda, ctx.p.steps, ctx.p.explicit_integration, ctx.squared};
 }
 
 // product = unit * C current; returns alpha = <current, D^-1 product>_D per column.
-std::array<double, 3> multiply(Context& ctx, Lanczos& l) {
-    return ctx.c.apply_dot(l.current, l.product, ctx.scratch);
+std::array<double, 3> multiply(Context& ctx, Lanczos& l, Positions& product) {
+    return ctx.c.apply_dot(l.current, product, ctx.scratch);
 }
 
 // One recurrence step given alpha_j and beta_{j-1}: previous <- the next basis vector. With
 // `measure`, beta_j is measured and stored, else taken from what is stored (the second pass
 // regenerates the first pass's basis bit for bit).
-void advance(Context& ctx, Lanczos& l, int j, bool measure) {
+void advance(Context& ctx, Lanczos& l, int j, bool measure, const Positions& product) {
     const int n = ctx.n;
     std::array<double, 3> a{}, b{}, inverse{};
     for (int c = 0; c < 3; ++c) {
@@ -204,19 +210,20 @@ void advance(Context& ctx, Lanczos& l, int j, bool measure) {
         a[c] = l.alpha[c][j];
         b[c] = j > 0 ? l.beta[c][j - 1] : 0.0;
     }
-    const double* d = ctx.d.data();
-    const char* f = ctx.p.free->data();
+    const StrengthProblem& p = ctx.p;
+    const char* f = p.free->data();
     double* prev = l.previous.data();
     const double* cur = l.current.data();
-    const double* prod = l.product.data();
-    const int threads = ctx.p.op->threads;
+    const double* prod = product.data();
+    const int threads = p.op->threads;
     // Summed in fixed blocks (kernels.h), so the same on any number of threads.
-    const std::array<double, 3> sums = blocked_sum<3>(n, threads, [=](int i, double* acc) {
+    const std::array<double, 3> sums = blocked_sum<3>(n, threads, [=, &p](int i, double* acc) {
         if (!f[i]) return;
+        const double d = d_of(p, i);
         for (int c = 0; c < 3; ++c) {
-            const double w = prod[3 * i + c] / d[i] - a[c] * cur[3 * i + c] - b[c] * prev[3 * i + c];
+            const double w = prod[3 * i + c] / d - a[c] * cur[3 * i + c] - b[c] * prev[3 * i + c];
             prev[3 * i + c] = w;
-            acc[c] += d[i] * w * w;
+            acc[c] += d * w * w;
         }
     });
     for (int c = 0; c < 3; ++c) {
@@ -310,14 +317,18 @@ void start_movement(Context& ctx, Lanczos& u) {
     LinearSystem filter_c = ctx.c;  // the filter's own C (Context::squared runs on C1)
     filter_c.order = ctx.p.order;
     filter_c.lambda_dt = ctx.p.length_unit;
-    filter_c.apply(*ctx.p.x, u.product, ctx.scratch);
+    Positions cx;
+    filter_c.apply(*ctx.p.x, cx, ctx.scratch);
+    // The processes' own products need the scratch vector only for L^2 (apply_dot); on C1
+    // (Context::squared, the default) it would sit unused through the search.
+    if (ctx.c.order == 1) ctx.scratch.resize(0, 3);
     std::array<double, 3> su{{0, 0, 0}};
     for (int i = 0; i < n; ++i) {
         if (!(*ctx.p.free)[i]) continue;
         for (int c = 0; c < 3; ++c) {
-            const double v = u.product(i, c);
-            su[c] += v * v / ctx.d[i];
-            u.current(i, c) = v / ctx.d[i];
+            const double v = cx(i, c);
+            su[c] += v * v / d_of(ctx.p, i);
+            u.current(i, c) = v / d_of(ctx.p, i);
         }
     }
     for (int c = 0; c < 3; ++c) {
@@ -335,7 +346,7 @@ void start_probes(Context& ctx, Lanczos& z, double count) {
     for (int i = 0; i < n; ++i) {
         if (!ctx.data[i]) continue;
         const std::uint64_t bits = mix(static_cast<std::uint64_t>(i));
-        for (int c = 0; c < 3; ++c) z.current(i, c) = ((bits >> c) & 1 ? 1.0 : -1.0) / std::sqrt(ctx.d[i]);
+        for (int c = 0; c < 3; ++c) z.current(i, c) = ((bits >> c) & 1 ? 1.0 : -1.0) / std::sqrt(d_of(ctx.p, i));
     }
     for (int c = 0; c < 3; ++c) {
         z.start_norm[c] = std::sqrt(count);
@@ -349,7 +360,9 @@ void start_probes(Context& ctx, Lanczos& z, double count) {
 // Lanczos process, and the probe's functional b n . v_j of both processes' basis vectors.
 struct Perturbation {
     double eps = 0;
-    Positions probe;  // b_i n_i on the data rows, 0 elsewhere
+    // b_i on the data rows, 0 elsewhere: the probe is b_i n_i, multiplied out where used
+    // rather than kept (24 bytes per vertex).
+    std::vector<signed char> sign;
     Positions x;
     SparseOperator op;
     StrengthProblem problem;
@@ -359,12 +372,14 @@ struct Perturbation {
 };
 
 // Appends b n . v_j for the current basis vector of every active column (serial: the same sum
-// on any number of threads).
-void record(const Lanczos& l, const Positions& probe, std::array<std::vector<double>, 3>& w) {
+// on any number of threads). Rows off the data add nothing.
+void record(const Lanczos& l, const std::vector<signed char>& sign, const Positions& normals,
+            std::array<std::vector<double>, 3>& w) {
     for (int c = 0; c < 3; ++c) {
         if (!l.active[c]) continue;
         double sum = 0;
-        for (Eigen::Index i = 0; i < probe.rows(); ++i) sum += probe(i, c) * l.current(i, c);
+        for (std::size_t i = 0; i < sign.size(); ++i)
+            if (sign[i]) sum += sign[i] * normals(i, c) * l.current(i, c);
         w[c].push_back(sum);
     }
 }
@@ -431,27 +446,28 @@ std::unique_ptr<Perturbation> perturb(const Context& ctx, const Positions& norma
     if (!p.assemble_at) return nullptr;
     auto mc = std::make_unique<Perturbation>();
     mc->eps = kPerturbation * sigma;
-    mc->probe.setZero(ctx.n, 3);
+    mc->sign.assign(ctx.n, 0);
     mc->x = *p.x;
     for (int i = 0; i < p.data_vertices; ++i) {
         if (!ctx.data[i]) continue;
-        const double b = mix(static_cast<std::uint64_t>(i) ^ 0x27d4eb2f165667c5ull) & 1 ? 1.0 : -1.0;
-        mc->probe.row(i) = b * normals.row(i);
-        mc->x.row(i) += mc->eps * mc->probe.row(i);
+        const bool plus = mix(static_cast<std::uint64_t>(i) ^ 0x27d4eb2f165667c5ull) & 1;
+        mc->sign[i] = plus ? 1 : -1;
+        const Eigen::RowVector3d probe = (plus ? 1.0 : -1.0) * normals.row(i);
+        mc->x.row(i) += mc->eps * probe;
     }
     mc->op = p.assemble_at(mc->x);
     model_steps(p, mc->x, mc->op);
     mc->op.threads = p.op->threads;
     if (mc->op.size() != p.op->size()) return nullptr;
     mc->problem = p;
+    std::vector<int>().swap(mc->problem.restored);  // the restoration is the outer problem's
     mc->problem.op = &mc->op;
     mc->problem.x = &mc->x;
-    mc->ctx.reset(new Context{mc->problem, ctx.c, ctx.d, ctx.data, Positions(), ctx.n, ctx.squared});
+    mc->ctx.reset(new Context{mc->problem, ctx.c, ctx.data, Positions(), ctx.n, ctx.squared});
     mc->ctx->c.op = &mc->op;
     for (int i = 0; i < ctx.n; ++i) {
         if (!(*p.free)[i]) continue;
         if (!(mc->op.mass[i] > 0)) return nullptr;
-        mc->ctx->d[i] = mc->op.mass[i] / (i < p.data_vertices ? (*p.weight)[i] : 1.0);
     }
     start_movement(*mc->ctx, mc->u);
     mc->x.resize(0, 3);  // only the start vector needed the perturbed positions
@@ -459,11 +475,11 @@ std::unique_ptr<Perturbation> perturb(const Context& ctx, const Positions& norma
 }
 
 // One Lanczos step of a block: alpha measured, then the next vector.
-void step(Context& ctx, Lanczos& l, int j) {
-    const std::array<double, 3> a = multiply(ctx, l);
+void step(Context& ctx, Lanczos& l, int j, Positions& product) {
+    const std::array<double, 3> a = multiply(ctx, l, product);
     for (int c = 0; c < 3; ++c)
         if (l.active[c]) l.alpha[c].push_back(a[c]);
-    advance(ctx, l, j, true);
+    advance(ctx, l, j, true, product);
 }
 
 int argmin(const std::vector<double>& v) {
@@ -719,16 +735,17 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sk
     Curves last;
     double previous_minimizer = 0;
     int next_check = 6;
+    Positions product;  // the processes' products, one at a time
     for (int j = 0; j < kMaxSteps; ++j) {
         const bool u_active = u.active[0] || u.active[1] || u.active[2];
         const bool z_active = !mc && (z.active[0] || z.active[1] || z.active[2]);
         const bool mc_active = mc && (mc->u.active[0] || mc->u.active[1] || mc->u.active[2]);
         if (u_active) sketch.add(u, normals);
-        if (u_active && mc) record(u, mc->probe, mc->w);
-        if (mc_active) record(mc->u, mc->probe, mc->w_perturbed);
-        if (u_active) step(ctx, u, j);
-        if (z_active) step(ctx, z, j);
-        if (mc_active) step(*mc->ctx, mc->u, j);
+        if (u_active && mc) record(u, mc->sign, normals, mc->w);
+        if (mc_active) record(mc->u, mc->sign, normals, mc->w_perturbed);
+        if (u_active) step(ctx, u, j, product);
+        if (z_active) step(ctx, z, j, product);
+        if (mc_active) step(*mc->ctx, mc->u, j, product);
         if (ctx.p.progress) ctx.p.progress(0.7 * (1 - 16.0 / (16.0 + j)));
         const bool exhausted =
             !(u.active[0] || u.active[1] || u.active[2] ||
@@ -826,9 +843,11 @@ StrengthEstimate estimate_strength(const StrengthProblem& p) {
     // ~25 degrees at half an edge), which hides part of it from the normal components.
     const Positions normals =
         robust_normals(*p.mesh, smoothed_copy(*p.op, *p.x, p.data_vertices, kSmoothingPasses));
-    std::vector<char> use(p.data_vertices, 0);
-    for (int i = 0; i < p.data_vertices; ++i) use[i] = (*p.free)[i];
-    e.noise_level = estimate_noise(*p.op, *p.mesh, *p.x, normals, use);
+    {
+        std::vector<char> use(p.data_vertices, 0);
+        for (int i = 0; i < p.data_vertices; ++i) use[i] = (*p.free)[i];
+        e.noise_level = estimate_noise(*p.op, *p.mesh, *p.x, normals, use);
+    }
     if (!(e.noise_level > 0)) return e;
     if (!p.pilot || !p.assemble_at) return risk_minimum(p, normals, e);
     SparseOperator model = *p.op;
@@ -843,26 +862,22 @@ StrengthEstimate estimate_strength(const StrengthProblem& p) {
 
 // The risk curve of problem p (noise level in e) and its minimizer.
 StrengthEstimate risk_minimum(const StrengthProblem& p, const Positions& normals, StrengthEstimate e) {
-    Context ctx{p, LinearSystem{}, {}, {}, Positions(), p.op->size()};
+    Context ctx{p, LinearSystem{}, {}, Positions(), p.op->size()};
     ctx.c.op = p.op;
     ctx.c.free = *p.free;
     ctx.c.lambda_dt = p.length_unit;
     ctx.c.order = p.order;
     ctx.squared = p.order == 2 && !p.explicit_integration;
-    ctx.c.diagonal.assign(ctx.n, 0.0);
-    ctx.d.assign(ctx.n, 1.0);
     ctx.data.assign(ctx.n, 0);
     double count = 0;  // data rows
     for (int i = 0; i < ctx.n; ++i) {
-        if (!(*p.free)[i]) continue;
-        ctx.d[i] = p.op->mass[i] / (i < p.data_vertices ? (*p.weight)[i] : 1.0);
-        if (i >= p.data_vertices) continue;
+        if (!(*p.free)[i] || i >= p.data_vertices) continue;
         ctx.data[i] = 1;
         ++count;
     }
     if (count == 0) return e;
     for (int i = 0; i < ctx.n && ctx.squared; ++i)
-        if ((*p.free)[i] && !(ctx.d[i] == p.op->mass[i])) ctx.squared = false;  // soft weights
+        if ((*p.free)[i] && !(d_of(p, i) == p.op->mass[i])) ctx.squared = false;  // soft weights
     if (ctx.squared) {
         ctx.c.order = 1;
         ctx.c.lambda_dt = std::sqrt(p.length_unit);

@@ -79,7 +79,8 @@ namespace detail {
 struct StrengthProblem {
     const SparseOperator* op = nullptr;       // the surface operator at the input positions
     const std::vector<char>* free = nullptr;  // the surface system's unknowns (mass > 0)
-    const std::vector<double>* weight = nullptr;  // soft weights of the data vertices (w_i)
+    const std::vector<double>* weight = nullptr;  // soft weights of the data vertices (w_i);
+                                                  // null: all 1
     const Positions* x = nullptr;             // positions, virtual vertices after the data
     const HalfEdgeMesh* mesh = nullptr;       // the data vertices' mesh (normals, noise)
     int data_vertices = 0;

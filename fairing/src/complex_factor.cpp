@@ -54,10 +54,17 @@ bool complex_factor_applies(const LinearSystem& system) {
     return true;
 }
 
-ComplexFactorSolver::ComplexFactorSolver(const LinearSystem& system)
-    : system_(system), s_(std::sqrt(system.lambda_dt)) {
+ComplexFactorSolver::ComplexFactorSolver(const LinearSystem& system, Multigrid* preconditioner)
+    : system_(system), s_(std::sqrt(system.lambda_dt)), preconditioner_(preconditioner) {
     const SparseOperator& op = *system.op;
     const int n = op.size();
+    r_.resize(n, 6);
+    p_.resize(n, 6);
+    q_.resize(n, 6);
+    if (preconditioner_) {
+        u_.resize(n, 6);
+        return;
+    }
     inverse_.assign(2 * static_cast<std::size_t>(n), 0.0);
     for_each_row(n, op.threads, [&](int i) {
         if (!system.free[i]) return;
@@ -69,9 +76,6 @@ ComplexFactorSolver::ComplexFactorSolver(const LinearSystem& system)
         inverse_[2 * i] = inv.re;
         inverse_[2 * i + 1] = inv.im;
     });
-    r_.resize(n, 6);
-    p_.resize(n, 6);
-    q_.resize(n, 6);
 }
 
 std::array<double, 6> ComplexFactorSolver::product(const Complex6& p, Complex6& q) const {
@@ -141,12 +145,6 @@ std::array<double, 3> ComplexFactorSolver::l2_residual_norms(ResidualNorm norm) 
         });
     if (!l2) return sums;
     return {std::sqrt(sums[0]), std::sqrt(sums[1]), std::sqrt(sums[2])};
-}
-
-void ComplexFactorSolver::use_preconditioner(Multigrid* preconditioner) {
-    preconditioner_ = preconditioner;
-    u_.resize(system_.op->size(), 6);
-    std::vector<double>().swap(inverse_);
 }
 
 std::array<double, 6> ComplexFactorSolver::precondition(bool first) {

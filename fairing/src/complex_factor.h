@@ -43,11 +43,10 @@ bool complex_factor_applies(const LinearSystem& system);
 
 class ComplexFactorSolver {
 public:
-    explicit ComplexFactorSolver(const LinearSystem& system);
-
-    // Precondition by B (width 6, complex symmetric: multigrid.h) instead of complex Jacobi;
-    // B must outlive the solver. Costs one more complex vector.
-    void use_preconditioner(Multigrid* preconditioner);
+    // Preconditioned by B (width 6, complex symmetric: multigrid.h) when given, else by complex
+    // Jacobi; B must outlive the solver. B costs one more complex vector and spares Jacobi's
+    // inverse diagonal (the two are never held together).
+    explicit ComplexFactorSolver(const LinearSystem& system, Multigrid* preconditioner = nullptr);
 
     // g = b - A x, the residual of the real L^2 system on the free rows (zero on the fixed
     // ones), kept as the complex solve's right-hand side; returns its norms per column.

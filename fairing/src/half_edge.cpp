@@ -98,6 +98,11 @@ HalfEdgeMesh HalfEdgeMesh::build(const Positions& positions, const std::vector<T
     return mesh;
 }
 
+void HalfEdgeMesh::release_pairing() {
+    std::vector<int>().swap(twin_);
+    std::vector<int>().swap(input_face_);
+}
+
 // Validation, and the faces that do not repeat a vertex, kept in order: each thread copies its
 // range after the faces kept by the threads before it. Nothing here reads a position through an
 // index, so the errors can wait for the end of the region.

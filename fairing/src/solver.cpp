@@ -62,7 +62,7 @@ Column3 LinearSystem::apply_dot(const Positions& x, Positions& y, Positions& scr
     const int n = op->size();
     y.resize(n, 3);
     const double* xs = x.data();
-    const double* d = diagonal.data();
+    const double* d = diagonal.empty() ? nullptr : diagonal.data();  // empty: D = 0
     const char* f = free.data();
     double* ys = y.data();
     const double lambda = lambda_dt;
@@ -87,9 +87,11 @@ Column3 LinearSystem::apply_dot(const Positions& x, Positions& y, Positions& scr
     return detail::sum_over_k_rows(*op, *v, [=](int i, double s0, double s1, double s2, double* a) {
         const double* xi = xs + 3 * i;
         double* yi = ys + 3 * i;
-        yi[0] = d[i] * xi[0] + scale * s0;
-        yi[1] = d[i] * xi[1] + scale * s1;
-        yi[2] = d[i] * xi[2] + scale * s2;
+        // D = 0 still adds 0 x_i, so the bits are those of an explicit diagonal of zeros.
+        const double di = d ? d[i] : 0.0;
+        yi[0] = di * xi[0] + scale * s0;
+        yi[1] = di * xi[1] + scale * s1;
+        yi[2] = di * xi[2] + scale * s2;
         if (!f[i]) return;
         a[0] = xi[0] * yi[0];
         a[1] = xi[1] * yi[1];
@@ -550,15 +552,15 @@ SolveStats solve_complex(const LinearSystem& system, Positions& x, const Positio
                          bool multigrid) {
     SolveStats stats;
     stats.complex_factor = true;
-    detail::ComplexFactorSolver solver(system);
+    // The hierarchy first: its set-up's work space is gone before the solver's vectors come.
     std::unique_ptr<detail::Multigrid> cycle;
     if (multigrid) {
         cycle = std::make_unique<detail::Multigrid>(*system.op, system.diagonal, system.free,
                                                     std::sqrt(system.lambda_dt),
                                                     detail::Multigrid::Kind::Complex);
-        solver.use_preconditioner(cycle.get());
         stats.multigrid = true;
     }
+    detail::ComplexFactorSolver solver(system, cycle.get());
     Progress progress(settings, goal);
     std::array<bool, 3> active{false, false, false};
     Column3 rn{0, 0, 0};

@@ -250,6 +250,31 @@ TEST(HalfEdge, IsolatedVertexAndDroppedFace) {
     expect_consistent_connectivity(he);
 }
 
+// fair() frees the pairing before its solves (HalfEdgeMesh::release_pairing); what the solves,
+// the volume restoration and the report read afterwards must stay as built.
+TEST(HalfEdge, ReleasingThePairingKeepsEverythingElse) {
+    const TriangleMesh m = meshes::merge(meshes::grid(5, 4), meshes::icosphere(2));
+    const HalfEdgeMesh built = build(m);
+    HalfEdgeMesh he = built;
+    he.release_pairing();
+    EXPECT_TRUE(he.input_face().empty());
+    ASSERT_EQ(he.num_vertices(), built.num_vertices());
+    EXPECT_EQ(he.faces(), built.faces());
+    EXPECT_EQ(he.boundary_loops(), built.boundary_loops());
+    EXPECT_EQ(he.boundary_loop_edges(), built.boundary_loop_edges());
+    EXPECT_EQ(he.component_of_vertex(), built.component_of_vertex());
+    ASSERT_EQ(he.components().size(), built.components().size());
+    for (std::size_t c = 0; c < he.components().size(); ++c) {
+        EXPECT_EQ(he.components()[c].vertices, built.components()[c].vertices);
+        EXPECT_EQ(he.components()[c].faces, built.components()[c].faces);
+        EXPECT_EQ(he.components()[c].closed(), built.components()[c].closed());
+    }
+    for (int v = 0; v < he.num_vertices(); ++v) {
+        EXPECT_EQ(he.outgoing(v), built.outgoing(v));
+        EXPECT_EQ(he.is_boundary_vertex(v), built.is_boundary_vertex(v));
+    }
+}
+
 TEST(HalfEdge, BowTieVertexIsReported) {
     // Two triangles sharing only vertex 0: vertex 0 has four boundary edges.
     TriangleMesh m;

@@ -72,6 +72,12 @@ public:
     // Boundary vertices with more than two boundary edges (bow-ties).
     const std::vector<int>& nonmanifold_vertices() const { return nonmanifold_vertices_; }
 
+    // Frees the pairing of half-edges and the map to the input faces (twin(), is_boundary(h),
+    // input_face(): 16 bytes per face, some 32 per vertex) for a caller that needs neither any
+    // more: fair() once its last operator is assembled, so that they are not held through the
+    // solves. Those three must not be called afterwards; everything else stays valid.
+    void release_pairing();
+
     // Throws Error for: an index out of range, non-finite coordinates, a non-manifold edge.
     // threads as in Options::threads (0 = all cores); meshes below detail::kParallelRows
     // vertices are built on one thread. The result does not depend on it.

@@ -52,7 +52,7 @@ namespace fairing {
 
 struct LinearSystem {
     const SparseOperator* op = nullptr;
-    std::vector<double> diagonal;  // D_i
+    std::vector<double> diagonal;  // D_i; empty: D = 0 (apply and apply_dot only: lambda_dt C)
     std::vector<char> free;        // nonzero: unknown
     double lambda_dt = 0;
     int order = 1;
