@@ -65,8 +65,9 @@ enum class VolumeRestoration {
     // Every free vertex moves along its area-weighted unit normal by one common distance t,
     // solved to machine precision: to first order the smallest correction (area-weighted
     // L2) that restores the volume. On a sphere it is the paper's scaling; on thin parts and
-    // tori it is not: scaling about the centroid moves far parts most whatever shrank
-    // (bench/results/denoise.md, "Volume restoration").
+    // tori it is not: scaling about the centroid moves far parts most whatever shrank (README,
+    // "Volume by the smallest correction"). A loss above kMaxOffsetChange (invariants.h) is
+    // scaled: an offset surface that large would fold over itself.
     NormalOffset,
     // Section 3.2: scale about the centroid by beta = (V0/Vn)^(1/3). A component with fixed
     // vertices still gets the normal offset, so fixed vertices stay where they are.
