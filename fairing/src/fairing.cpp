@@ -569,7 +569,7 @@ void Run::choose_time_step() {
     problem.length_unit = has_units ? length_unit_ : 1.0;
     problem.order = options_.order;
     problem.steps = std::max(1, options_.steps);
-    problem.pilot = options_.op != Operator::Umbrella && !options_.freeze_operator && problem.steps >= 2;
+    problem.pilot = assembles_again();  // the steps recompute the weights of the positions
     problem.explicit_integration = options_.integration == Integration::Explicit;
     // Explicit: at most half the first step's stability bound. At the bound the highest mode
     // flips sign undamped, and later steps on recomputed operators have lower bounds.
