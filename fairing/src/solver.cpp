@@ -714,7 +714,8 @@ SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& 
     // Automatic on the Jacobi path, with half the cap: a system it stalls on (needles whose
     // capped cotangents still leave it ill-conditioned: curvature L^2 x4 at time step 4 on
     // CGAL's camel with isotropic noise stalled at 1e-5 after 2000 iterations) is handed to the
-    // multigrid V-cycle from where it stopped, with the rest (it converged there in 35).
+    // multigrid V-cycle from where it stopped, with the rest (the four steps then took 2141
+    // iterations in all, against 527 with the V-cycle throughout).
     SolveSettings first = settings;
     first.max_iterations = (settings.max_iterations + 1) / 2;
     SolveStats stats = solve_complex(system, x, b, scale, goal, first, false);
