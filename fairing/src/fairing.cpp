@@ -221,6 +221,7 @@ private:
     std::vector<char> ever_free_;   // moved by some step
     std::vector<double> target_;    // per component: volume (closed) or area (open), or 0
     Positions x_;                   // centred working positions (plus virtual vertices)
+    SolveStats previous_surface_solve_;  // the last step's (solver.h, SolveSettings::previous)
     SparseOperator surface_, curve_;
     AssemblyReport worst_;          // most of each finding over the assemblies
     double mean_edge_ = 0;
@@ -316,7 +317,11 @@ void Run::integrate(const SparseOperator& op, const std::vector<char>& free, dou
             report_progress(std::min(1.0, (step + std::min(1.0, f)) / steps));
         };
     }
-    record(solve(linear, x_, settings), step, system);
+    const bool surface = &op == &surface_;
+    if (surface && step > 0) settings.previous = &previous_surface_solve_;
+    const SolveStats stats = solve(linear, x_, settings);
+    if (surface) previous_surface_solve_ = stats;
+    record(stats, step, system);
 }
 
 LinearSystem Run::system_for(const SparseOperator& op, const std::vector<char>& free,

@@ -531,11 +531,28 @@ constexpr double kMultigridFirstOrder = 20;
 constexpr double kMultigridComplex = 8;
 constexpr double kMultigridRows = 50000;
 
+// A later step of the same run (settings.previous: an L^2 step re-assembled on the smoothed
+// mesh) takes the V-cycle when the previous one did, or when complex Jacobi needed more than
+// this many iterations there: about what a V-cycle solve costs in Jacobi iterations (set-up
+// ~13, then ~35 cycles of ~3.2 each at the one-click strengths). The stiffness does not predict
+// the later steps: on the smoothed mesh it rises while Jacobi's iterations rise on a scan and
+// fall on a smooth shape. Measured (1 thread, curvature L^2 x4, process seconds of fair();
+// solves' iterations; complex Jacobi / V-cycle throughout):
+//   bunny Loop x2 (1.2 M faces), 22.5: Jacobi 116, 206, 218, 238 (29.6 s) / 31, 46, 48, 51
+//     (23.4 s), stiffness 5.7 then 7.7-7.9 (so the threshold of 8 gave Jacobi at 23.0 and the
+//     V-cycle from 25 on, 31.0 s against 24.7 s); 10: 92, 168, 173, 190 (25.1 s) / 29-44 (21.0 s)
+//   torus (1 M faces), 22.5: 72, 62, 50, 51 (7.6 s) / 30, 26, 20, 20 (10.4 s), stiffness 5.5
+//     then 6.6; 50: 84, 69, 60, 58 (8.6 s) / 37, 31, 26, 25 (12.2 s)
+constexpr int kJacobiWorthMultigrid = 100;
+
 // Whether the multigrid preconditioner is used: asked for, or chosen by Automatic.
-bool use_multigrid(const LinearSystem& system, Preconditioner preconditioner) {
+bool use_multigrid(const LinearSystem& system, Preconditioner preconditioner,
+                   const SolveStats* previous = nullptr) {
     if (preconditioner == Preconditioner::Multigrid) return true;
     if (preconditioner != Preconditioner::Automatic) return false;
     const std::array<double, 2> s = stiffness(system);
+    if (previous && previous->complex_factor && system.order == 2 && s[1] >= kMultigridRows)
+        return previous->multigrid || previous->iterations > kJacobiWorthMultigrid;
     return s[1] >= kMultigridRows &&
            s[0] >= (system.order == 1 ? kMultigridFirstOrder : kMultigridComplex);
 }
@@ -708,7 +725,7 @@ SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& 
                          settings.preconditioner == Preconditioner::Multigrid;
     if (!complex || !detail::complex_factor_applies(system))
         return solve_real(system, x, b, scale, goal, settings);
-    const bool multigrid = use_multigrid(system, settings.preconditioner);
+    const bool multigrid = use_multigrid(system, settings.preconditioner, settings.previous);
     if (multigrid || settings.preconditioner != Preconditioner::Automatic)
         return solve_complex(system, x, b, scale, goal, settings, multigrid);
     // Automatic on the Jacobi path, with half the cap: a system it stalls on (needles whose

@@ -227,6 +227,44 @@ TEST(Multigrid, AutomaticHandsAnUnconvergedSolveToTheVCycle) {
     EXPECT_LT(meshes::max_row_distance(x, mg.x), 1e-7 * c.h);
 }
 
+TEST(Multigrid, AutomaticFollowsThePreviousStepOfTheRun) {
+    // 163,842 vertices: above the 50,000 rows Automatic needs before it considers the V-cycle.
+    // A later step of a run (SolveSettings::previous) is decided by how the previous one went,
+    // whichever way the stiffness points: the V-cycle after a V-cycle or a long Jacobi solve,
+    // Jacobi after a short one. Each result is the same step.
+    const Case c = make(meshes::radial_noise(meshes::icosphere(7), 0.05, 23),
+                        Operator::CurvatureFlow);
+    struct Previous {
+        double time_step;  // 1: the stiffness alone gives Jacobi; 90: the V-cycle
+        bool multigrid;
+        int iterations;
+        bool expect_multigrid;
+    };
+    for (const Previous& p : {Previous{1, false, 150, true}, Previous{1, true, 20, true},
+                              Previous{90, false, 50, false}}) {
+        SCOPED_TRACE(testing::Message() << "time step " << p.time_step << ", previous: multigrid "
+                                        << p.multigrid << ", " << p.iterations << " iterations");
+        const LinearSystem s = system(c, 2, lambda(c, Operator::CurvatureFlow, 2, p.time_step),
+                                      std::vector<char>(c.op.size(), 1));
+        const Solved alone = solve(c, s, Preconditioner::Automatic, 1e-7);
+        EXPECT_EQ(alone.stats.multigrid, p.time_step > 1);
+        fairing::SolveStats previous;
+        previous.complex_factor = true;
+        previous.converged = true;
+        previous.multigrid = p.multigrid;
+        previous.iterations = p.iterations;
+        Positions x = c.mesh.positions;
+        fairing::SolveSettings settings;
+        settings.tolerance = 1e-7;
+        settings.max_iterations = 20000;
+        settings.previous = &previous;
+        const fairing::SolveStats stats = fairing::solve(s, x, settings);
+        EXPECT_TRUE(stats.converged);
+        EXPECT_EQ(stats.multigrid, p.expect_multigrid);
+        EXPECT_LT(meshes::max_row_distance(x, alone.x), 1e-4 * c.h);
+    }
+}
+
 TEST(Multigrid, BitIdenticalOnOneAndTwoThreads) {
     // 40,962 vertices: ten blocks of the fixed-order sums, and the finest level's rows split
     // over the two threads.

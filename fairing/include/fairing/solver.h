@@ -80,6 +80,10 @@ struct SolveSettings {
     ResidualNorm norm = ResidualNorm::L2;
     int max_iterations = 2000;
     Preconditioner preconditioner = Preconditioner::Automatic;
+    // Automatic: the solve of the previous step of the same run (the same kind of system,
+    // assembled again on the smoothed mesh), if any. How it went predicts this solve's Jacobi
+    // iterations better than the stiffness does (solver.cpp, use_multigrid).
+    const SolveStats* previous = nullptr;
     // Called after each iteration with an estimate of the fraction done in [0, 1]: how far the
     // residual has come down, on a log scale, from where it started to the tolerance.
     std::function<void(double)> progress;
