@@ -151,13 +151,18 @@ int main(int argc, char** argv) {
             for (size_t i = 0; i < m.v.size(); ++i)
                 for (int k = 0; k < 3; ++k) out.v[i][k] = r.positions(long(i), k);
             write_ply(argv[3], out);
+            // Per solve (one per step, or one for frozen steps taken at once): its iterations.
+            std::string per_solve;
+            for (const fairing::SolveReport& solve : r.solves)
+                per_solve += (per_solve.empty() ? "" : ",") + std::to_string(solve.iterations);
             std::printf("{\"seconds\":%.6f,\"seconds_engine\":%.6f,\"cg_iterations\":%d,"
                         "\"inner_iterations\":%d,\"cpu_seconds\":%.6f,"
                         "\"extra_peak_bytes_per_vertex\":%.1f,\"peak_rss_kb\":%ld,"
-                        "\"time_step\":%.9g,\"strength_seconds\":%.6f,\"strength_iterations\":%d}\n",
+                        "\"time_step\":%.9g,\"strength_seconds\":%.6f,\"strength_iterations\":%d,"
+                        "\"solve_iterations\":[%s]}\n",
                         s, r.seconds, r.total_iterations, r.total_inner_iterations, cpu,
                         1024.0 * double(after - before) / double(m.v.size()), after, r.time_step,
-                        r.strength_seconds, r.strength_iterations);
+                        r.strength_seconds, r.strength_iterations, per_solve.c_str());
         } else return usage();
     } catch (const std::exception& e) {
         std::cerr << "fairing-bench-tool: " << e.what() << "\n";

@@ -13,10 +13,11 @@
 //   eval CLEAN TRUTH INPUT RESULT...   one JSON line per RESULT: rms, max (in CLEAN's mean
 //                                      edges), volume_change (percent, vs INPUT)
 //   sweep INPUT CLEAN TRUTH OP ORDER STEPS X0 [--ts T1,T2,...] [--auto|--at-chosen]
-//         [--no-volume|--scale]
+//         [--no-volume|--scale] [--freeze]
 //                                      runs fairing::fair() in-process on INPUT (rounded to
 //                                      float, as the CLI and MeshLab read it) and prints one JSON
-//                                      line per time step: the log-scale search of the best one
+//                                      line per time step (rms: to the surface; rms_normal: along
+//                                      the clean normals, per vertex): the log-scale search of the best one
 //                                      starting at X0 (bench::log_search), or the listed ones;
 //                                      --auto adds the engine's automatic choice when it has
 //                                      one (Options::time_step an optional value), else a line
@@ -24,7 +25,8 @@
 //                                      then one fixed run at the time step it chose (nothing
 //                                      else; for the cost row); --no-volume: volume not
 //                                      restored; --scale: restored by the paper's scaling
-//                                      instead of the default normal offset
+//                                      instead of the default normal offset; --freeze: the
+//                                      first step's operator for every step (section 4.3)
 // TRUTH: sphere | plane | torus:R:r | mesh (the CLEAN mesh's surface).
 #include "bench_mesh.h"
 #include "denoise_shapes.h"
@@ -77,13 +79,27 @@ std::string truth_spec(const std::string& t, const std::string& clean) { return 
 
 struct Run {
     Score s;
+    double rms_normal = std::nan("");  // RMS of n_i . (x_i - clean_i) / h: what SURE estimates
     double seconds = 0, chosen = std::nan(""), noise = std::nan(""), choosing = std::nan("");
     int cg = 0;
     std::string error;
 };
 
+// The error SURE estimates (auto_strength.h): per vertex, along the clean mesh's area-weighted
+// normal, against the vertex's own clean position. Tangential sliding is free in both this and the
+// distance to the surface, but only the latter sees a vertex slide off a curved or sharp part.
+double rms_along_normals(const Mesh& clean, const std::vector<V3>& normals, const std::vector<V3>& p, double h) {
+    if (clean.v.size() != p.size()) return std::nan("");
+    double e2 = 0;
+    for (size_t i = 0; i < p.size(); ++i) {
+        const double d = dot(normals[i], sub(p[i], clean.v[i]));
+        e2 += d * d;
+    }
+    return std::sqrt(e2 / double(std::max<size_t>(1, p.size()))) / h;
+}
+
 Run fair_once(const fairing::TriangleMesh& tm, const Mesh& input, const Truth& truth, double h,
-              fairing::Options o) {
+              fairing::Options o, const Mesh& clean, const std::vector<V3>& normals) {
     Run run;
     try {
         const auto t0 = std::chrono::steady_clock::now();
@@ -93,6 +109,7 @@ Run fair_once(const fairing::TriangleMesh& tm, const Mesh& input, const Truth& t
         for (size_t i = 0; i < p.size(); ++i)
             for (int k = 0; k < 3; ++k) p[i][k] = double(float(r.positions(long(i), k)));  // stored as float
         run.s = score(truth, h, input, p);
+        run.rms_normal = rms_along_normals(clean, normals, p, h);
         run.cg = r.total_iterations;
         run.chosen = chosen_step(r, 0);
         run.noise = noise_edges(r, 0);
@@ -114,9 +131,10 @@ std::string json_text(const std::string& s) {
 }
 
 void print_run(const char* kind, double ts, const Run& r) {
-    std::printf("{\"kind\":\"%s\",\"time_step\":%s,\"rms\":%s,\"max\":%s,\"volume_change\":%s,"
-                "\"seconds\":%s,\"cg\":%d,\"noise_level_edges\":%s,\"strength_seconds\":%s%s%s%s}\n",
-                kind, num(ts).c_str(), num(r.s.rms).c_str(), num(r.s.max).c_str(),
+    std::printf("{\"kind\":\"%s\",\"time_step\":%s,\"rms\":%s,\"rms_normal\":%s,\"max\":%s,"
+                "\"volume_change\":%s,\"seconds\":%s,\"cg\":%d,\"noise_level_edges\":%s,"
+                "\"strength_seconds\":%s%s%s%s}\n",
+                kind, num(ts).c_str(), num(r.s.rms).c_str(), num(r.rms_normal).c_str(), num(r.s.max).c_str(),
                 num(r.s.volume_change).c_str(), num(r.seconds).c_str(), r.cg, num(r.noise).c_str(),
                 num(r.choosing).c_str(),
                 r.error.empty() ? "" : ",\"error\":\"", json_text(r.error).c_str(),
@@ -128,6 +146,7 @@ int sweep(int argc, char** argv) {
     const Mesh input = read_mesh_as_float(argv[2]), clean = read_mesh(argv[3]);
     const Truth truth(truth_spec(argv[4], argv[3]));
     const double h = mean_edge(clean);
+    const std::vector<V3> normals = vertex_normals(clean);
     fairing::Options o;
     o.op = parse_op(argv[5]);
     o.order = std::atoi(argv[6]);
@@ -142,6 +161,7 @@ int sweep(int argc, char** argv) {
         else if (a == "--at-chosen") want_auto = at_chosen = true;
         else if (a == "--no-volume") o.preserve_volume = false;
         else if (a == "--scale") o.restoration = fairing::VolumeRestoration::Scale;
+        else if (a == "--freeze") o.freeze_operator = true;
         else if (a == "--ts" && i + 1 < argc) {
             std::stringstream ss(argv[++i]);
             std::string x;
@@ -154,13 +174,14 @@ int sweep(int argc, char** argv) {
         for (int k = 0; k < 3; ++k) tm.positions(long(i), k) = input.v[i][k];
     tm.triangles.assign(input.f.begin(), input.f.end());
     {
-        std::vector<V3> p = input.v;
-        print_run("input", 0, Run{score(truth, h, input, p)});
+        Run r{score(truth, h, input, input.v)};
+        r.rms_normal = rms_along_normals(clean, normals, input.v, h);
+        print_run("input", 0, r);
     }
     if (want_auto) {
         fairing::Options a = o;
         if (set_auto(a, 0)) {
-            const Run r = fair_once(tm, input, truth, h, a);
+            const Run r = fair_once(tm, input, truth, h, a, clean, normals);
             print_run("auto", r.chosen, r);
             if (at_chosen && std::isfinite(r.chosen)) list.push_back(r.chosen);
         } else std::printf("{\"kind\":\"auto\",\"auto\":\"n/a\"}\n");
@@ -168,7 +189,7 @@ int sweep(int argc, char** argv) {
     auto f = [&](double ts) {
         fairing::Options e = o;
         e.time_step = ts;
-        const Run r = fair_once(tm, input, truth, h, e);
+        const Run r = fair_once(tm, input, truth, h, e, clean, normals);
         print_run("fixed", ts, r);
         return r.s.rms;
     };
