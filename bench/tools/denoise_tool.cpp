@@ -16,9 +16,10 @@
 //         [--no-volume|--scale] [--freeze]
 //                                      runs fairing::fair() in-process on INPUT (rounded to
 //                                      float, as the CLI and MeshLab read it) and prints one JSON
-//                                      line per time step (rms: to the surface; rms_normal: along
-//                                      the clean normals, per vertex): the log-scale search of the best one
-//                                      starting at X0 (bench::log_search), or the listed ones;
+//                                      line per time step (rms: to the surface; rms_normal:
+//                                      along the clean normals, per vertex): the log-scale
+//                                      search of the best one starting at X0
+//                                      (bench::log_search), or the listed ones;
 //                                      --auto adds the engine's automatic choice when it has
 //                                      one (Options::time_step an optional value), else a line
 //                                      with "auto":"n/a"; --at-chosen: the automatic choice and
@@ -86,9 +87,12 @@ struct Run {
 };
 
 // The error SURE estimates (auto_strength.h): per vertex, along the clean mesh's area-weighted
-// normal, against the vertex's own clean position. Tangential sliding is free in both this and the
-// distance to the surface, but only the latter sees a vertex slide off a curved or sharp part.
-double rms_along_normals(const Mesh& clean, const std::vector<V3>& normals, const std::vector<V3>& p, double h) {
+// normal, against the vertex's own clean position. Tangential sliding is free in both this and
+// the distance to the surface; they differ where the surface turns within the error's reach: a
+// vertex pulled inwards at a 90-degree crease is cos 45 degrees of its displacement from the
+// nearest face (bench/results/issue11/auto-gap.md).
+double rms_along_normals(const Mesh& clean, const std::vector<V3>& normals,
+                         const std::vector<V3>& p, double h) {
     if (clean.v.size() != p.size()) return std::nan("");
     double e2 = 0;
     for (size_t i = 0; i < p.size(); ++i) {
@@ -134,7 +138,8 @@ void print_run(const char* kind, double ts, const Run& r) {
     std::printf("{\"kind\":\"%s\",\"time_step\":%s,\"rms\":%s,\"rms_normal\":%s,\"max\":%s,"
                 "\"volume_change\":%s,\"seconds\":%s,\"cg\":%d,\"noise_level_edges\":%s,"
                 "\"strength_seconds\":%s%s%s%s}\n",
-                kind, num(ts).c_str(), num(r.s.rms).c_str(), num(r.rms_normal).c_str(), num(r.s.max).c_str(),
+                kind, num(ts).c_str(), num(r.s.rms).c_str(), num(r.rms_normal).c_str(),
+                num(r.s.max).c_str(),
                 num(r.s.volume_change).c_str(), num(r.seconds).c_str(), r.cg, num(r.noise).c_str(),
                 num(r.choosing).c_str(),
                 r.error.empty() ? "" : ",\"error\":\"", json_text(r.error).c_str(),
