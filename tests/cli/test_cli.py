@@ -235,9 +235,14 @@ def case_json():
         vb, va = j["volume_before"], j["volume_after"]
         check(vb > 4.0 and abs(va - vb) <= 1e-6 * abs(vb),
               "volume not preserved: %r -> %r" % (vb, va))
-        check(j["volume_restoration"] == ["normal offset of the free vertices"],
-              "volume_restoration %r" % j.get("volume_restoration"))
         automatic = ts in (None, "auto")
+        # The default restores by a normal offset while a step changes the volume by at most 10 %
+        # and scales beyond (invariants.h): the fixed steps here stay below; an automatic one
+        # may not (scale-dependent L^2 chooses 278 on this sphere, whose first step takes a third of
+        # its volume).
+        check(j["volume_restoration"] == ["normal offset of the free vertices"] or
+              (automatic and j["volume_restoration"] == ["scaled about the centroid"]),
+              "volume_restoration %r" % j.get("volume_restoration"))
         check(j["automatic_time_step"] == automatic, "automatic_time_step %r" % j)
         if automatic:  # the chosen step, reported, is the one used
             check(j["time_step"] > 0 and j["noise_level_edges"] >= 0, "strength %r" % j)

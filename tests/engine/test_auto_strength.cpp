@@ -123,9 +123,9 @@ TEST(AutoStrength, StrongerNoiseGivesLargerStep) {
 
 // Units: the estimate works on the dimensionless operator, so a mesh in micrometres and the same
 // mesh in kilometres get the same time step and the same result relative to their size. The
-// Lanczos process meets the same numbers up to rounding, so its stopping decisions agree; the
-// sketch of the normal residual is summed in single precision, whose rounding moves the refined
-// minimizer by ~1e-5 (relative), far below what changes a result.
+// Lanczos process meets the same numbers up to rounding, so its stopping decisions agree, and
+// the rounding of the risk curve moves the refined minimizer far less than what changes a
+// result. (With the sketch of the normal residual in single precision it moved by up to 4e-3.)
 TEST(AutoStrength, SameRelativeResultAtEveryScale) {
     const TriangleMesh m = meshes::translated(noisy_sphere(0.2), Vec3(0.3, -0.2, 0.1));
     for (Operator op : meshes::kOperators) {
@@ -231,7 +231,9 @@ TEST(AutoStrength, CurvatureFlowLeavesAFlatPatchFlat) {
                 moved = std::max(moved, (r.positions.row(i) - m.positions.row(i)).norm());
             }
             EXPECT_LT(off_plane, 1e-12 * diagonal);
-            if (tolerance < 1e-12) EXPECT_LT(moved, 1e-12 * diagonal) << "time step " << r.time_step;
+            if (tolerance < 1e-12) {
+                EXPECT_LT(moved, 1e-12 * diagonal) << "time step " << r.time_step;
+            }
             EXPECT_LT(sphere_error(r.positions.topRows(ns)), 0.8 * sphere_error(sphere.positions));
         }
     }
