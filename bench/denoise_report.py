@@ -131,6 +131,8 @@ def setting(r):
 
 def at_edge(r):
     """The best setting is the last one tried: the peer might do better beyond."""
+    if "at_sweep_end" in r:   # an extract's row: its run's verdict (the other settings are not kept)
+        return r["at_sweep_end"]
     rows = peer[(r["mesh"], r["noise"], r["method"])]
     key = "applications" if "applications" in r else ("iterations" if r["method"].startswith("OpenMesh") else "c")
     return r[key] == max(x[key] for x in rows) and len(rows) > 2
@@ -502,7 +504,9 @@ keep = set()
 for v in list(oracle.values()) + list(auto.values()) + list(cli_auto.values()):
     keep.add(id(v))
 for v in peer.values():
-    keep.add(id(min(v, key=lambda r: r["rms"])))
+    best = min(v, key=lambda r: r["rms"])
+    best["at_sweep_end"] = at_edge(best)   # kept in the extract, for a later --peers-from
+    keep.add(id(best))
 for op in OPS:
     if op in recommend:
         for (m, n, o, order, steps), v in ours.items():
