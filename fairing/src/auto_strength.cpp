@@ -182,6 +182,18 @@ struct Context {
     // (1 + lambda g)^-1 on the squared spectrum (umbrella L^2 on the 1.2 M-face bunny: 78
     // Lanczos steps).
     bool squared = false;
+    // With soft weights (D = M/w) the L^2 filter's G = W^1/2 G1^2 W^1/2 is no square; it is
+    // modelled as G~^2, G~ = W^1/4 G1 W^1/4 (exact for uniform weights, and up to the commutator
+    // of G1 with the weights' variation otherwise), so that these problems keep the G1 path.
+    // On the L^2 operator itself the processes converged so slowly that the curvature flow on
+    // CGAL's camel and on the 1.2 M-face bunny reached the step cap before the time steps that
+    // matter. Measured (bench/results/issue11/auto-gap.md §6): uniform weights give the
+    // unweighted choice exactly; weights varying along the mesh give the converged L^2
+    // process's choice within 4 % on scans, but on the sphere and the torus, whose best steps
+    // act on the smoothest modes where the commutator is not small, a 4-10x weaker one.
+    // Per row w^-1/4 (empty: no soft weights).
+    std::vector<double> weight_root;
+    Positions scaled;  // scratch for the product with G~
 };
 
 // D_i = M_i / w_i of a free row, computed where needed rather than kept (8 bytes per vertex and
@@ -194,9 +206,25 @@ Filter filter_at(const Context& ctx, double lambda) {
     return Filter{lambda, ctx.p.steps, ctx.p.explicit_integration, ctx.squared};
 }
 
-// product = unit * C current; returns alpha = <current, D^-1 product>_D per column.
+// product = unit * C current (with Context::weight_root: W^-1/4 C1 W^-1/4 current); returns
+// alpha = <current, D^-1 product>_D per column.
 std::array<double, 3> multiply(Context& ctx, Lanczos& l, Positions& product) {
-    return ctx.c.apply_dot(l.current, product, ctx.scratch);
+    if (ctx.weight_root.empty()) return ctx.c.apply_dot(l.current, product, ctx.scratch);
+    const int n = ctx.n;
+    ctx.scaled.resize(n, 3);
+    const double* root = ctx.weight_root.data();
+    const double* cur = l.current.data();
+    double* scaled = ctx.scaled.data();
+    const int threads = ctx.p.op->threads;
+    FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1))
+    for (int i = 0; i < n; ++i)
+        for (int c = 0; c < 3; ++c) scaled[3 * i + c] = root[i] * cur[3 * i + c];
+    const std::array<double, 3> dot = ctx.c.apply_dot(ctx.scaled, product, ctx.scratch);
+    double* prod = product.data();
+    FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1))
+    for (int i = 0; i < n; ++i)
+        for (int c = 0; c < 3; ++c) prod[3 * i + c] *= root[i];
+    return dot;
 }
 
 // One recurrence step given alpha_j and beta_{j-1}: previous <- the next basis vector. With
@@ -463,7 +491,8 @@ std::unique_ptr<Perturbation> perturb(const Context& ctx, const Positions& norma
     std::vector<int>().swap(mc->problem.restored);  // the restoration is the outer problem's
     mc->problem.op = &mc->op;
     mc->problem.x = &mc->x;
-    mc->ctx.reset(new Context{mc->problem, ctx.c, ctx.data, Positions(), ctx.n, ctx.squared});
+    mc->ctx.reset(new Context{mc->problem, ctx.c, ctx.data, Positions(), ctx.n, ctx.squared,
+                              ctx.weight_root, Positions()});
     mc->ctx->c.op = &mc->op;
     for (int i = 0; i < ctx.n; ++i) {
         if (!(*p.free)[i]) continue;
@@ -488,22 +517,10 @@ int argmin(const std::vector<double>& v) {
 
 // Relative change of the curves between two checkpoints below which a point counts as converged.
 constexpr double kConverged = 2e-2;
-constexpr int kMaxSteps = 400;
-// The same for implicit L^2 on the squared spectrum (soft weights: not Context::squared). Its
-// Krylov approximation of the filter converges so slowly that two checkpoints 1.4x apart differ
-// by far less than either's error: at 2 % the torus (10 k faces, a quarter edge of noise) chose
-// 68 for the scale-dependent L^2 step and 628 for the curvature flow, where the G1 process (and
-// this path at 0.1 %, with 152 and 296 Lanczos steps instead of 56 and 78) chooses 28.9 and 297.
-// The tolerance relaxes to kConverged by the step cap (kMaxSteps), so that a run the cap stops
-// still has converged points to choose from (curvature flow on CGAL's camel and on the 75 k
-// bunny, all weights 0.9: at 0.1 % throughout they ended at the cap with only weak steps
-// converged and chose 0.19x and 0.61x the unweighted choice / 0.9, which is what uniform
-// weights must give; bench/results/issue11/auto-gap.md §6).
-constexpr double kConvergedSquaredSpectrum = 1e-3;
-constexpr int kStrictSteps = 100;  // Lanczos steps held to kConvergedSquaredSpectrum
 // The Lanczos process runs until its curves are converged up to this factor above the risk's
 // minimizer (and the minimizer has settled).
 constexpr double kMargin = 1.5;
+constexpr int kMaxSteps = 400;
 // Rows of the sketch of the normal components (exact below this many data vertices).
 constexpr int kSketch = 8192;
 // Second pass: points of the final lambda grid.
@@ -716,7 +733,7 @@ constexpr std::size_t kAhead = 6;
 // The risk curve at a checkpoint: traces everywhere, RSS_n from where the filter starts to act
 // up to a few points past those that have converged since the last checkpoint.
 Curves checkpoint(const Context& ctx, const Lanczos& u, const Lanczos& z, const Perturbation* mc,
-                  const Sketch& sketch, const Search& s, const Curves& last, int steps) {
+                  const Sketch& sketch, const Search& s, const Curves& last) {
     Curves now;
     now.trace = mc ? divergences(ctx, u, *mc, s.count, s.grid) : traces(ctx, z, s.count, s.grid);
     while (now.first + 1 < s.grid.size() && now.trace[now.first + 1] > 0.98 * s.count)
@@ -724,7 +741,7 @@ Curves checkpoint(const Context& ctx, const Lanczos& u, const Lanczos& z, const 
     // Evaluate up to 2 kAhead points past the last checkpoint's converged ones (those up to
     // kAhead past were evaluated then too, and can be judged now).
     const std::size_t end = std::min(s.grid.size(), std::max(last.reach, now.first) + 2 * kAhead);
-    // Points that had converged keep their values (they move by less than the tolerance): the
+    // Points that had converged keep their values (they move by less than kConverged): the
     // sketch is evaluated only where the curve may still move.
     std::size_t from = now.first;
     while (from < last.reach && from < end && std::isfinite(last.rss[from])) ++from;
@@ -733,14 +750,6 @@ Curves checkpoint(const Context& ctx, const Lanczos& u, const Lanczos& z, const 
         now.rss[g] = last.rss[g];
         now.gain[g] = last.gain[g];
     }
-    const bool slow = ctx.c.order == 2 && !ctx.p.explicit_integration;
-    // Geometric from kConvergedSquaredSpectrum at kStrictSteps to kConverged at kMaxSteps.
-    const double past = std::max(0.0, std::log(static_cast<double>(steps) / kStrictSteps) /
-                                          std::log(static_cast<double>(kMaxSteps) / kStrictSteps));
-    const double converged =
-        slow ? std::min(kConverged, kConvergedSquaredSpectrum *
-                                        std::pow(kConverged / kConvergedSquaredSpectrum, past))
-             : kConverged;
     now.reach = now.first;
     for (std::size_t g = now.first; g < end; ++g) {
         if (g < from) {
@@ -749,9 +758,9 @@ Curves checkpoint(const Context& ctx, const Lanczos& u, const Lanczos& z, const 
         }
         const bool settled =
             g < last.rss.size() && std::isfinite(last.rss[g]) &&
-            std::abs(now.rss[g] - last.rss[g]) <= converged * now.rss[g] &&
+            std::abs(now.rss[g] - last.rss[g]) <= kConverged * now.rss[g] &&
             std::abs(now.trace[g] - last.trace[g]) <=
-                converged * std::max(s.count - now.trace[g], 1e-3 * s.count);
+                kConverged * std::max(s.count - now.trace[g], 1e-3 * s.count);
         if (!settled) break;
         now.reach = g + 1;
     }
@@ -789,7 +798,7 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sk
                   : z.active[0] || z.active[1] || z.active[2]));
         if (j + 1 < next_check && !exhausted) continue;
         next_check = std::max(j + 2, static_cast<int>(1.4 * (j + 1)));
-        Curves now = checkpoint(ctx, u, z, mc, sketch, s, last, j + 1);
+        Curves now = checkpoint(ctx, u, z, mc, sketch, s, last);
         if (exhausted) {  // T is exact: every evaluated point holds
             now.reach = now.first;
             while (now.reach < now.rss.size() && std::isfinite(now.rss[now.reach])) ++now.reach;
@@ -909,7 +918,7 @@ StrengthEstimate estimate_strength(const StrengthProblem& p) {
 
 // The risk curve of problem p (noise level in e) and its minimizer.
 StrengthEstimate risk_minimum(const StrengthProblem& p, const Positions& normals, StrengthEstimate e) {
-    Context ctx{p, LinearSystem{}, {}, Positions(), p.op->size()};
+    Context ctx{p, LinearSystem{}, {}, Positions(), p.op->size(), false, {}, Positions()};
     ctx.c.op = p.op;
     ctx.c.free = *p.free;
     ctx.c.lambda_dt = p.length_unit;
@@ -923,12 +932,19 @@ StrengthEstimate risk_minimum(const StrengthProblem& p, const Positions& normals
         ++count;
     }
     if (count == 0) return e;
-    for (int i = 0; i < ctx.n && ctx.squared; ++i)
-        if ((*p.free)[i] && !(d_of(p, i) == p.op->mass[i])) ctx.squared = false;  // soft weights
+    bool weighted = false;  // soft weights: Context::weight_root
+    for (int i = 0; i < ctx.n && ctx.squared && !weighted; ++i)
+        weighted = (*p.free)[i] && !(d_of(p, i) == p.op->mass[i]);
+    if (weighted) {
+        ctx.weight_root.assign(ctx.n, 1.0);
+        for (int i = 0; i < ctx.n; ++i)
+            if ((*p.free)[i]) ctx.weight_root[i] = std::pow(p.op->mass[i] / d_of(p, i), -0.25);
+    }
     if (ctx.squared) {
         ctx.c.order = 1;
         ctx.c.lambda_dt = std::sqrt(p.length_unit);
     }
+
     e.data_count = count;
 
     Lanczos u, z;

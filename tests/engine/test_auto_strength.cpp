@@ -303,20 +303,23 @@ TEST(AutoStrength, SeveralRecomputedStepsLandNearTheBestFixedStep) {
     }
 }
 
-// L^2 without soft weights runs its Lanczos processes on the first-order operator (the filter is
-// a function of G1^2, auto_strength.cpp, Context::squared); with weights it runs on the L^2
-// operator itself. Weights of 1 - 1e-9 take the second path for what is the same filter, so
-// both must choose the same time step (to the few per cent at which the risk curve is resolved).
-TEST(AutoStrength, FirstOrderKrylovSpaceChoosesAsTheSecondOrderOne) {
+// Soft weights multiply lambda row by row, so weights of c everywhere are the unweighted filter
+// at c lambda: the automatic choice must be the unweighted one / c (up to where the risk curve's
+// grid falls), and as cheap. L^2 with weights runs on G~ = W^1/4 G1 W^1/4 (auto_strength.cpp,
+// Context::weight_root), exact here; on the L^2 operator itself, as before, the torus and the
+// sphere chose 2.2-2.4x and 1.7x off and large scans ran into the step cap.
+TEST(AutoStrength, UniformWeightsDivideTheTimeStep) {
     const TriangleMesh m = noisy_sphere(0.25);
-    fairing::Constraints almost_one;
-    almost_one.weights.assign(static_cast<std::size_t>(m.positions.rows()), 1 - 1e-9);
+    fairing::Constraints half;
+    half.weights.assign(static_cast<std::size_t>(m.positions.rows()), 0.5);
     for (Operator op : meshes::kOperators) {
         SCOPED_TRACE(fairing::to_string(op));
-        const fairing::Result squared = fairing::fair(m, {}, automatic(op, 2));
-        const fairing::Result direct = fairing::fair(m, almost_one, automatic(op, 2));
-        EXPECT_NEAR(squared.time_step / direct.time_step, 1.0, 0.05);
-        EXPECT_LE(squared.strength_iterations, direct.strength_iterations);
+        const fairing::Result plain = fairing::fair(m, {}, automatic(op, 2));
+        const fairing::Result weighted = fairing::fair(m, half, automatic(op, 2));
+        EXPECT_NEAR(0.5 * weighted.time_step / plain.time_step, 1.0, 0.03);
+        EXPECT_LE(weighted.strength_iterations, plain.strength_iterations + 10);
+        EXPECT_LT(meshes::max_row_distance(weighted.positions, plain.positions),
+                  0.02 * meshes::mean_edge_length(m.positions, m.triangles));
     }
 }
 
