@@ -190,7 +190,7 @@ struct Context {
     // matter. Measured (bench/results/issue11/auto-gap.md §6): uniform weights give the
     // unweighted choice exactly; weights varying along the mesh give the converged L^2
     // process's choice within 4 % on scans, but on the sphere and the torus, whose best steps
-    // act on the smoothest modes where the commutator is not small, a 4-10x weaker one.
+    // act on the smoothest modes where the commutator is not small, a 4-11x weaker one.
     // Per row w^-1/4 (empty: no soft weights).
     std::vector<double> weight_root;
     Positions scaled;  // scratch for the product with G~
@@ -944,7 +944,6 @@ StrengthEstimate risk_minimum(const StrengthProblem& p, const Positions& normals
         ctx.c.order = 1;
         ctx.c.lambda_dt = std::sqrt(p.length_unit);
     }
-
     e.data_count = count;
 
     Lanczos u, z;
