@@ -110,6 +110,7 @@ struct StrengthEstimate {
     double time_step = 0;     // dimensionless
     double noise_level = 0;   // sigma, in the mesh's units
     int lanczos_steps = 0;
+    bool capped = false;  // the Lanczos processes reached their step cap before the choice settled
     double trace_fraction = 1;  // tr H / N at the chosen time step: the share of noise kept
     // The risk curve around the choice (for studies and tests, not for users): SURE is
     // rss + 2 noise_level^2 trace.

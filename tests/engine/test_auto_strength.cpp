@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -321,6 +322,27 @@ TEST(AutoStrength, UniformWeightsDivideTheTimeStep) {
         EXPECT_LT(meshes::max_row_distance(weighted.positions, plain.positions),
                   0.02 * meshes::mean_edge_length(m.positions, m.triangles));
     }
+}
+
+// Weights that vary along the mesh: the G~ model (auto_strength.cpp, Context::weight_root) is
+// not exact, and where the chosen step reaches the smoothest modes (a sphere under curvature
+// flow) it chose 4-11x too weak, 1.21-1.59x the best fixed step's error (here 1.25x); such
+// choices are redone on the L^2 operator itself (kWeightModelKeeps).
+TEST(AutoStrength, VaryingWeightsOnASphereLandNearTheBestFixedStep) {
+    const TriangleMesh clean = meshes::two_density_sphere(3);
+    const double h = meshes::mean_edge_length(clean.positions, clean.triangles);
+    const TriangleMesh m = meshes::radial_noise(clean, 0.25 * h * std::sqrt(3.0), 31);
+    fairing::Constraints ramp;
+    for (int i = 0; i < m.positions.rows(); ++i)
+        ramp.weights.push_back(std::clamp(0.6 + 0.4 * m.positions(i, 2), 0.2, 1.0));  // bottom to top
+    const fairing::Result chosen = fairing::fair(m, ramp, automatic(Operator::CurvatureFlow, 2));
+    double best = sphere_error(m.positions);
+    for (double t = 1; t < 1e5; t *= 1.5) {
+        Options o = automatic(Operator::CurvatureFlow, 2);
+        o.time_step = t;
+        best = std::min(best, sphere_error(fairing::fair(m, ramp, o).positions));
+    }
+    EXPECT_LT(sphere_error(chosen.positions), 1.1 * best) << "time step " << chosen.time_step;
 }
 
 // Every option with automatic strength: selection, soft weights, the three boundary modes,
