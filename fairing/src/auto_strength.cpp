@@ -957,7 +957,7 @@ StrengthEstimate estimate_strength(const StrengthProblem& p) {
 }
 
 // The risk curve of problem p (noise level in e) and its minimizer. With soft weights, L^2 runs
-// on the model of Context::weight_root unless !model_weights.
+// on the model of Context::weight_root unless !model_weights; `assembled` goes to perturb().
 StrengthEstimate risk_minimum(const StrengthProblem& p, const Positions& normals, StrengthEstimate e,
                               bool model_weights, SparseOperator* assembled) {
     const StrengthEstimate given = e;
