@@ -754,7 +754,7 @@ struct Search {
     double minimizer = 0;     // of the risk over the converged points
     double converged_to = 0;  // largest converged lambda
     double count = 0;
-    bool capped = false;  // stopped by kMaxSteps before the minimizer settled
+    bool capped = true;  // stopped by kMaxSteps before the minimizer settled
 };
 
 // Points evaluated past the last converged one at each checkpoint.
@@ -859,9 +859,10 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sk
         previous_minimizer = s.minimizer;
         previous_at_edge = best + 1 == now.reach;
         if (exhausted || now.reach == s.grid.size() ||
-            (settled && s.converged_to >= kMargin * s.minimizer))
+            (settled && s.converged_to >= kMargin * s.minimizer)) {
+            s.capped = false;
             break;
-        s.capped = j + 1 == kMaxSteps;
+        }
     }
     if (s.converged_to == 0) {  // nothing converged within the cap: take what there is
         s.converged_to = s.grid.front();
