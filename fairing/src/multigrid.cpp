@@ -26,14 +26,21 @@ constexpr int kCoarseSweeps = 2;
 constexpr int kMaxLevels = 12;
 // Coarsening that keeps more than this fraction of the rows has stalled: stop there.
 constexpr double kStall = 0.8;
-// Weight of the Jacobi smoother times rho, the Gershgorin bound of rho(D_A^-1 A): below 2, so a
-// sweep contracts every mode of the real SPD matrix (w lambda_max <= 1.7). The bound is tight on
-// the mass-dominated levels of weak steps but some 40 % high on the stiffness-dominated ones,
-// where the usual 4/3 then damps too much: on a 10 k-vertex sphere (curvature, tests) 1.7
-// against 4/3 took 14 / 25 / 31 first-order iterations against 16 / 29 / 35 at time steps
-// 4.74 / 76 / 1213, and 21 / 34 / 43 against 23 / 39 / 48 for L^2 at 22.5 / 360 / 5760; 2.1
-// took fewer at strong steps but more at 22.5 (28), and 2.7 diverged on weak ones.
-constexpr double kSmootherWeight = 1.7;
+// Weight of the Jacobi smoother times rho, a bound on rho(D_A^-1 A) (jacobi_bound): below 2, so
+// a sweep contracts every mode of the real SPD matrix (w lambda_max <= 1.85). The bound used to be
+// the row-scaled Gershgorin bound alone, 40-80 % high on the stiffness-dominated levels (4.05
+// against a power-iteration estimate of 2.18 on the finest level of the 1.2 M-face bunny at
+// curvature 75.84), with weight 1.7. Iterations with the tighter bound and these weights against
+// before (1 thread, preconditioner=multigrid, curvature; 2026-11-25): bunny, first order at
+// 4.74 / 75.84: 11 / 16 against 14 / 20, L^2 at 22.5 / 360: 26 / 35 against 31 / 44; 1 M-face
+// torus 13 / 21 against 15 / 24 and 27 / 53 against 30 / 51; on the study's armadillo (n0.5),
+// bunny 75 k, camel (iso0.25), two-density sphere and fandisk (n0.5), first order at 4.74 / 75.84
+// / 1213 and L^2 at 22.5 / 360 / 5760, 10-25 % fewer in all 30 cases but two equal ones (camel:
+// 24 / 41 / 60 and 59 / 77 / 91 against 30 / 53 / 78 and 68 / 93 / 114). The complex smoother
+// keeps 1.7: 2.0 took the torus' L^2 at 360 from 53 to 94 iterations, 1.5 the bunny's from 35
+// to 38.
+constexpr double kSmootherWeight = 1.85;
+constexpr double kComplexSmootherWeight = 1.7;
 // Strength threshold of the coarse levels (on the finest level every mesh neighbour is strong:
 // the operator's own graph), halved per level as Vanek, Mandel and Brezina suggest.
 constexpr double kTheta = 0.0;
@@ -80,6 +87,9 @@ struct Multigrid::Impl {
     double* fine_work = nullptr;  // level 0's residual vector, lent by the caller of apply()
 
     double* work(Level& level, int l) { return l == 0 ? fine_work : level.res.data(); }
+    double smoother_weight() const {
+        return kind == Kind::Complex ? kComplexSmootherWeight : kSmootherWeight;
+    }
 
     Impl(const SparseOperator& o, const std::vector<double>& d, const std::vector<char>& f,
          double a_, Kind k)
@@ -166,17 +176,25 @@ Csr transpose(const Csr& p, int nc) {
     return r;
 }
 
-// Jacobi weight of a level that is not coarsened.
-double last_weight(const Split& m, const std::vector<double>& adiag, double a) {
-    double rho = 0;
-    const int n = static_cast<int>(m.start.size()) - 1;
+// An upper bound on rho(D_A^-1 A) for A = mass - a stiff given by row(i, fn) (diagonal
+// included): the smaller of Gershgorin's bound on the rows of D_A^-1 A and on the symmetrically
+// scaled D_A^-1/2 A D_A^-1/2 (similar to it), max_i sum_j |A_ij| / sqrt(A_ii A_jj). The second is
+// the tighter where the diagonal varies (needles: 2.86 against 4.05 on the bunny above).
+template <class Row>
+double jacobi_bound(int n, const Row& row, const std::vector<double>& adiag, double a) {
+    double by_rows = 0, symmetric = 0;
     for (int i = 0; i < n; ++i) {
         if (!(adiag[i] > 0)) continue;
-        double sum = 0;
-        for (int e = m.start[i]; e < m.start[i + 1]; ++e) sum += std::abs(m.mass[e] - a * m.stiff[e]);
-        rho = std::max(rho, sum / adiag[i]);
+        double sum = 0, scaled = 0;
+        row(i, [&](int j, double m, double s) {
+            const double v = std::abs(m - a * s);
+            sum += v;
+            if (adiag[j] > 0) scaled += v / std::sqrt(adiag[i] * adiag[j]);
+        });
+        by_rows = std::max(by_rows, sum / adiag[i]);
+        symmetric = std::max(symmetric, scaled);
     }
-    return rho > 0 ? kSmootherWeight / rho : 0.0;
+    return std::min(by_rows, symmetric);
 }
 
 // R B P in both parts (mass, stiffness), coarse row by coarse row (Gustavson, dense
@@ -233,16 +251,9 @@ Split Multigrid::Impl::coarsen(int n, const Row& row, const std::vector<double>&
     };
     std::vector<int> agg;
     const int nc = aggregate(n, adiag, strong, agg);
-    // Gershgorin bound of rho(D_A^-1 A).
-    double rho = 0;
-    for (int i = 0; i < n; ++i) {
-        if (!(adiag[i] > 0)) continue;
-        double sum = 0;
-        row(i, [&](int, double m, double s) { sum += std::abs(m - aa * s); });
-        rho = std::max(rho, sum / adiag[i]);
-    }
+    const double rho = jacobi_bound(n, row, adiag, aa);
     const double omega = rho > 0 ? 4.0 / (3.0 * rho) : 0.0;
-    *omega_out = rho > 0 ? kSmootherWeight / rho : 0.0;
+    *omega_out = rho > 0 ? smoother_weight() / rho : 0.0;
     // P = (I - w D_A^-1 A) P_tent, row by row (merged per aggregate).
     Csr& p = fine.p;
     std::vector<std::pair<int, double>> entries;
@@ -367,7 +378,8 @@ void Multigrid::Impl::build() {
         };
         const bool last = nc <= kCoarsest || nc > kStall * nf || l + 1 == kMaxLevels;
         if (last) {
-            const double last_w = last_weight(m, cdiag, a);
+            const double rho = jacobi_bound(nc, coarse_row, cdiag, a);
+            const double last_w = rho > 0 ? smoother_weight() / rho : 0.0;
             finish_level(levels[l], std::move(m), last_w);
             coarsest(levels[l]);
             return;

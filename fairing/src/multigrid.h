@@ -19,17 +19,17 @@
 // Hierarchy: built once from the real SPD matrix A = D - a K_ff. Aggregates of strongly
 // coupled rows (greedy, in row order: the vertex order is a space-filling curve, so aggregates
 // are compact), near-null space the constants (K 1 = 0), tentative prolongator = aggregate
-// indicator, smoothed once by damped Jacobi P = (I - w D_A^-1 A) P_tent with
-// w = 4 / (3 rho), rho = a Gershgorin bound of rho(D_A^-1 A). Every level keeps the mass and
-// stiffness parts apart (P^T D P and P^T K P), so the complex levels are
-// P^T D P + i a P^T K P: the same real hierarchy, Galerkin coarse operators of the complex
-// matrix. The coarsest level (at most kCoarsest rows) is solved exactly by dense LU.
+// indicator, smoothed once by damped Jacobi P = (I - w D_A^-1 A) P_tent with w = 4 / (3 rho),
+// rho a Gershgorin bound of rho(D_A^-1 A) (the smaller of the row-scaled and the symmetrically
+// scaled one). Every level keeps the mass and stiffness parts apart (P^T D P and P^T K P), so the
+// complex levels are P^T D P + i a P^T K P: the same real hierarchy, Galerkin coarse operators of
+// the complex matrix. The coarsest level (at most kCoarsest rows) is solved exactly by dense LU.
 //
 // Cycle: one V-cycle with damped Jacobi sweeps before and after the coarse correction (one on
-// the finest level, two below; weight 1.7 / rho on the diagonal of B, complex for
-// Kind::Complex), started from zero. Pre and post
-// smoothing are transposes of each other and the coarse solve is exact, so the cycle is a
-// symmetric (Real) or complex-symmetric (Complex) linear operator: valid for CG and COCG.
+// the finest level, two below; weight 1.85 / rho, or 1.7 / rho with the complex diagonal for
+// Kind::Complex), started from zero. Pre and post smoothing are transposes of each other and the
+// coarse solve is exact, so the cycle is a symmetric (Real) or complex-symmetric (Complex) linear
+// operator: valid for CG and COCG.
 //
 // Determinism: set-up is sequential; in the cycle every row of every level is computed alone
 // (restriction by the stored rows of P^T), so the result has the same bits on any number of
