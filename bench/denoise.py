@@ -105,7 +105,10 @@ QUICK = ["sphere2_3k", "plane_3k", "elephant_6k", "fandisk_13k"]
 # size, dominate); bunny_75k, armadillo_52k, fandisk_loop1_52k, camel_loop1_78k via --only.
 FULL = ["sphere2_3k", "sphere2_13k", "torus_10k", "plane_3k", "elephant_6k", "fandisk_13k", "camel_20k",
         "dragon_20k", "elephant_loop1_22k"]
-COST_MESH = ("bunny_loop2_1.2m", scan_loop("bunny00", 2))
+# >= 1 M faces: a scan, whose chosen steps are moderate, and the torus, whose smooth surface asks
+# for the strongest steps (the automatic strength's Lanczos processes then run longest).
+COST_MESHES = [("bunny_loop2_1.2m", scan_loop("bunny00", 2), "mesh"),
+               ("torus_1m", lambda o: run([DT, "make", "torus", "1000000", o]), "torus:1:0.4")]
 NOISES = [("n0.1", 0.1, "normal"), ("n0.25", 0.25, "normal"), ("n0.5", 0.5, "normal"), ("iso0.25", 0.25, "iso")]
 
 only = [x for x in a.only.split(",") if x]
@@ -265,7 +268,13 @@ def cost_rows(auto_cli, auto_tool):
     same run, on >= 1 M faces, order 2, one step, one thread: through the CLI (seconds_engine) when
     it accepts --time-step auto, and in-process (fair()'s seconds, fairing-denoise-tool
     --at-chosen) when the engine has it."""
-    name, make = COST_MESH
+    rows = []
+    for name, make, truth in COST_MESHES:
+        rows.extend(cost_rows_on(name, make, truth, auto_cli, auto_tool))
+    return rows
+
+
+def cost_rows_on(name, make, truth, auto_cli, auto_tool):
     clean = os.path.join(meshes_dir, "dn_%s_clean.ply" % name)
     if not os.path.exists(clean):
         make(clean)
@@ -278,7 +287,7 @@ def cost_rows(auto_cli, auto_tool):
     for op in OPS:
         r = dict(mesh=name, method="cost", op=op, order=2, steps=1, vertices=info["vertices"], faces=info["faces"])
         if auto_tool:
-            pts = jlines(run([DT, "sweep", noisy, clean, "mesh", op, "2", "1", "1", "--at-chosen"], env=env).stdout)
+            pts = jlines(run([DT, "sweep", noisy, clean, truth, op, "2", "1", "1", "--at-chosen"], env=env).stdout)
             au = next(x for x in pts if x.get("kind") == "auto")
             fx = next(x for x in pts if x.get("kind") == "fixed")
             rows.append(dict(r, via="engine", time_step=au["time_step"], seconds_auto=au["seconds"],
@@ -395,7 +404,7 @@ def main():
             if (i + 1) % 20 == 0:
                 log("%d/%d tasks done" % (i + 1, len(tasks)))
     if not a.no_cost and not a.quick and not only:
-        log("cost rows on %s" % COST_MESH[0])
+        log("cost rows on %s" % ", ".join(m[0] for m in COST_MESHES))
         rows.extend(cost_rows(auto_cli, auto_tool))
     meta = dict(date=time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), machine=platform.node(),
                 cores=os.cpu_count(), load_after=os.getloadavg(), minutes=(time.time() - started) / 60,

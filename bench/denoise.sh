@@ -16,7 +16,7 @@
 #   --jobs N       parallel runs (default 2; the runs themselves are single-threaded)
 #   --build DIR    build directory (default $FAIRING_CACHE/bench-build, as bench/run.sh)
 #   --no-install   do not apt-get install the peers (libcgal-dev libopenmesh-dev gnuplot-nox)
-#   --no-cost      skip the >= 1 M-face cost row (Loop x2 bunny)
+#   --no-cost      skip the >= 1 M-face cost rows (Loop x2 bunny, 1 M-face torus)
 #   --auto-from F  only the automatic strength (and the invariants, the cost row) against the
 #                  oracles in F, the full rows of an earlier run (engine gained auto since)
 #   --ours-only    run only our filters (engine changed, peers did not) and take the peers' rows
