@@ -526,7 +526,11 @@ std::array<double, 2> stiffness(const LinearSystem& system) {
 // So: first order from stiffness 20, L^2 from 8 (the defaults, at 3-6, stay on the Jacobi paths,
 // whose memory is lower: the hierarchy and one more vector cost 110-180 bytes per vertex; the
 // torus' L^2 at 90 is the one measured loss, 12 %), and only with at least kMultigridRows free
-// vertices (not measured below; a small solve is fast anyway).
+// vertices (not measured below; a small solve is fast anyway). Re-measured once the V-cycle's
+// weights came from a tighter bound (multigrid.cpp, kSmootherWeight: 10-25 % fewer cycles): the
+// V-cycle now wins the bunny's curvature and scale-dependent L^2 defaults by 20-22 % and still
+// loses the torus' by 23-60 %, at about the same stiffness; the thresholds stand
+// (bench/results/issue12/preconditioners.md, last section).
 constexpr double kMultigridFirstOrder = 20;
 constexpr double kMultigridComplex = 8;
 constexpr double kMultigridRows = 50000;
