@@ -167,7 +167,19 @@ struct Lanczos {
     std::array<std::vector<double>, 3> alpha, beta;  // beta[j] joins basis vectors j and j+1
     std::array<double, 3> start_norm{{0, 0, 0}};
     std::array<bool, 3> active{{true, true, true}};
+    // With `pending`, current holds the next basis vector before its division by beta: the pass
+    // that reads it first (Sketch::add, record) scales it by `scale` as advance() would have,
+    // on the free rows (0 elsewhere), and so saves advance() a pass over it.
+    bool pending = false;
+    std::array<double, 3> scale{{0, 0, 0}};
 };
+
+// The basis vector's entry (i, c) from what `current` holds (see Lanczos::pending), written back.
+inline double settle(const Lanczos& l, const char* free, double* v, int i, int c) {
+    if (!l.pending) return v[3 * i + c];
+    v[3 * i + c] = free[i] ? v[3 * i + c] * l.scale[c] : 0.0;
+    return v[3 * i + c];
+}
 
 struct Context {
     const StrengthProblem& p;
@@ -231,7 +243,8 @@ std::array<double, 3> multiply(Context& ctx, Lanczos& l, Positions& product) {
 // One recurrence step given alpha_j and beta_{j-1}: previous <- the next basis vector. With
 // `measure`, beta_j is measured and stored, else taken from what is stored (the second pass
 // regenerates the first pass's basis bit for bit).
-void advance(Context& ctx, Lanczos& l, int j, bool measure, const Positions& product) {
+void advance(Context& ctx, Lanczos& l, int j, bool measure, const Positions& product,
+             bool defer = false) {
     const int n = ctx.n;
     std::array<double, 3> a{}, b{}, inverse{};
     for (int c = 0; c < 3; ++c) {
@@ -271,9 +284,13 @@ void advance(Context& ctx, Lanczos& l, int j, bool measure, const Positions& pro
         }
         inverse[c] = 1.0 / l.beta[c][j];
     }
-    FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1))
-    for (int i = 0; i < n; ++i)
-        for (int c = 0; c < 3; ++c) prev[3 * i + c] = f[i] ? prev[3 * i + c] * inverse[c] : 0.0;
+    l.pending = defer;
+    l.scale = inverse;
+    if (!defer) {
+        FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1))
+        for (int i = 0; i < n; ++i)
+            for (int c = 0; c < 3; ++c) prev[3 * i + c] = f[i] ? prev[3 * i + c] * inverse[c] : 0.0;
+    }
     l.previous.swap(l.current);
 }
 
@@ -404,18 +421,21 @@ struct Perturbation {
 // columns, summed in fixed blocks (the same bits on any number of threads). Rows off the data
 // add nothing. (Three serial passes, one per column, took 12.6 % of perf's samples of an
 // automatic scale-dependent L^2 step on the 1 M-face torus, one thread.)
-void record(const Lanczos& l, const std::vector<signed char>& sign, const Positions& normals,
-            std::array<std::vector<double>, 3>& w, int threads) {
+void record(Lanczos& l, const std::vector<signed char>& sign, const Positions& normals,
+            const char* free, std::array<std::vector<double>, 3>& w, int threads) {
     const signed char* b = sign.data();
     const double* nv = normals.data();
-    const double* v = l.current.data();
+    double* v = l.current.data();
     const std::array<bool, 3> active = l.active;
+    const Lanczos& settled = l;
     const std::array<double, 3> sums =
-        blocked_sum<3>(static_cast<int>(sign.size()), threads, [=](int i, double* a) {
-            if (!b[i]) return;
-            for (int c = 0; c < 3; ++c)
-                if (active[c]) a[c] += b[i] * nv[3 * i + c] * v[3 * i + c];
+        blocked_sum<3>(static_cast<int>(sign.size()), threads, [=, &settled](int i, double* a) {
+            for (int c = 0; c < 3; ++c) {
+                const double vc = settle(settled, free, v, i, c);
+                if (b[i] && active[c]) a[c] += b[i] * nv[3 * i + c] * vc;
+            }
         });
+    l.pending = false;
     for (int c = 0; c < 3; ++c)
         if (active[c]) w[c].push_back(sums[c]);
 }
@@ -520,11 +540,13 @@ std::unique_ptr<Perturbation> perturb(const Context& ctx, const Positions& norma
 }
 
 // One Lanczos step of a block: alpha measured, then the next vector.
-void step(Context& ctx, Lanczos& l, int j, Positions& product) {
+// `defer`: leave the new basis vector's division by beta to the pass that reads it first
+// (Lanczos::pending), which must run before the next step.
+void step(Context& ctx, Lanczos& l, int j, Positions& product, bool defer = false) {
     const std::array<double, 3> a = multiply(ctx, l, product);
     for (int c = 0; c < 3; ++c)
         if (l.active[c]) l.alpha[c].push_back(a[c]);
-    advance(ctx, l, j, true, product);
+    advance(ctx, l, j, true, product, defer);
 }
 
 int argmin(const std::vector<double>& v) {
@@ -625,7 +647,7 @@ public:
     // do not depend on the number of threads. (Serial, with the probe's sums a pass of their
     // own, these took 15 % of perf's samples of an automatic scale-dependent L^2 step on the
     // 1 M-face torus with two threads.)
-    void add(const Lanczos& u, const Positions& normals, int threads,
+    void add(Lanczos& u, const Positions& normals, const char* free, int threads,
              const std::vector<signed char>* probe = nullptr,
              std::array<std::vector<double>, 3>* probed = nullptr) {
         std::array<Eigen::Index, 3> slot{{-1, -1, -1}};
@@ -653,7 +675,8 @@ public:
         const double* field = restoration_.field.data();
         const signed char* b_sign = probe ? probe->data() : nullptr;
         const double* nv = normals.data();
-        const double* v = u.current.data();
+        double* v = u.current.data();
+        const Lanczos& settled = u;
         double* sums = chunk_sums_.data();
         (void)threads;
         FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1 && chunks > 1))
@@ -666,10 +689,12 @@ public:
                 const int b = bucket[i];
                 const int k = i < components_known ? component[i] : -1;
                 const int bi = b_sign ? b_sign[i] : 0;
+                double vi[3];
+                for (int c = 0; c < 3; ++c) vi[c] = settle(settled, free, v, i, c);
                 if (b < 0 && k < 0 && bi == 0) continue;
                 for (int c = 0; c < 3; ++c) {
                     if (slot[c] < 0) continue;
-                    const double nv_c = nv[3 * i + c] * v[3 * i + c];
+                    const double nv_c = nv[3 * i + c] * vi[c];
                     if (b >= 0) to_bucket[3 * b + c] += static_cast<double>(sign[i]) * nv_c;
                     if (bi != 0) to_probe[c] += bi * nv_c;
                     if (k < 0) continue;
@@ -679,6 +704,7 @@ public:
                 }
             }
         }
+        u.pending = false;
         std::array<std::vector<double>, 3> by_volume, by_field, by_sum;
         std::array<double, 3> probe_sum{{0, 0, 0}};
         for (int c = 0; c < 3; ++c) by_volume[c].assign(slot[c] >= 0 ? nc : 0, 0.0);
@@ -886,11 +912,15 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sk
         const bool u_active = u.active[0] || u.active[1] || u.active[2];
         const bool z_active = !mc && (z.active[0] || z.active[1] || z.active[2]);
         const bool mc_active = mc && (mc->u.active[0] || mc->u.active[1] || mc->u.active[2]);
-        if (u_active) sketch.add(u, normals, ctx.p.op->threads, mc ? &mc->sign : nullptr, mc ? &mc->w : nullptr);
-        if (mc_active) record(mc->u, mc->sign, normals, mc->w_perturbed, ctx.p.op->threads);
-        if (u_active) step(ctx, u, j, product);
+        const char* free = ctx.p.free->data();
+        if (u_active)
+            sketch.add(u, normals, free, ctx.p.op->threads, mc ? &mc->sign : nullptr, mc ? &mc->w : nullptr);
+        if (mc_active) record(mc->u, mc->sign, normals, free, mc->w_perturbed, ctx.p.op->threads);
+        // u's and the perturbed process's next basis vectors are divided by beta in the passes
+        // above at the next step (one pass over each fewer per step).
+        if (u_active) step(ctx, u, j, product, true);
         if (z_active) step(ctx, z, j, product);
-        if (mc_active) step(*mc->ctx, mc->u, j, product);
+        if (mc_active) step(*mc->ctx, mc->u, j, product, true);
         if (ctx.p.progress) ctx.p.progress(0.7 * (1 - 16.0 / (16.0 + j)));
         const bool exhausted =
             !(u.active[0] || u.active[1] || u.active[2] ||
