@@ -240,6 +240,48 @@ std::array<double, 3> multiply(Context& ctx, Lanczos& l, Positions& product) {
     return dot;
 }
 
+// multiply() for two processes on the same first-order operator without soft weights (the
+// movement and the Hutchinson probes of a linear operator), in one pass over K: each row's
+// entries are read from memory once and used for both (the second k_row finds them cached).
+// The same arithmetic, row for row and block for block, as two apply_dot calls, so the same
+// bits. Returns alpha for a ([0..2]) and b ([3..5]).
+std::array<double, 6> multiply_pair(Context& ctx, const Lanczos& a, const Lanczos& b,
+                                    Positions& product_a, Positions& product_b) {
+    const LinearSystem& system = ctx.c;
+    const SparseOperator& op = *system.op;
+    const int n = op.size();
+    product_a.resize(n, 3);
+    product_b.resize(n, 3);
+    const double* xa = a.current.data();
+    const double* xb = b.current.data();
+    double* ya = product_a.data();
+    double* yb = product_b.data();
+    const double* d = system.diagonal.empty() ? nullptr : system.diagonal.data();
+    const char* f = system.free.data();
+    const int* start = op.row_start.data();
+    const int* column = op.column.data();
+    const double* weight = op.weight.data();
+    const double scale = -system.lambda_dt;  // order 1: A = D - lambda_dt K
+    return blocked_sum<6>(n, op.threads, [=](int i, double* sum) {
+        const double di = d ? d[i] : 0.0;
+        const double* x[2] = {xa, xb};
+        double* y[2] = {ya, yb};
+        for (int k = 0; k < 2; ++k) {
+            double s0, s1, s2;
+            k_row(i, x[k], start, column, weight, s0, s1, s2);
+            const double* xi = x[k] + 3 * i;
+            double* yi = y[k] + 3 * i;
+            yi[0] = di * xi[0] + scale * s0;
+            yi[1] = di * xi[1] + scale * s1;
+            yi[2] = di * xi[2] + scale * s2;
+            if (!f[i]) continue;
+            sum[3 * k] += xi[0] * yi[0];
+            sum[3 * k + 1] += xi[1] * yi[1];
+            sum[3 * k + 2] += xi[2] * yi[2];
+        }
+    });
+}
+
 // One recurrence step given alpha_j and beta_{j-1}: previous <- the next basis vector. With
 // `measure`, beta_j is measured and stored, else taken from what is stored (the second pass
 // regenerates the first pass's basis bit for bit).
@@ -908,6 +950,7 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sk
     bool previous_at_edge = false;
     int next_check = 6;
     Positions product;  // the processes' products, one at a time
+    Positions product_z;  // the probes' beside the movement's (multiply_pair)
     for (int j = 0; j < kMaxSteps; ++j) {
         const bool u_active = u.active[0] || u.active[1] || u.active[2];
         const bool z_active = !mc && (z.active[0] || z.active[1] || z.active[2]);
@@ -918,8 +961,18 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sk
         if (mc_active) record(mc->u, mc->sign, normals, free, mc->w_perturbed, ctx.p.op->threads);
         // u's and the perturbed process's next basis vectors are divided by beta in the passes
         // above at the next step (one pass over each fewer per step).
-        if (u_active) step(ctx, u, j, product, true);
-        if (z_active) step(ctx, z, j, product);
+        if (u_active && z_active && ctx.weight_root.empty() && ctx.c.order == 1) {
+            const std::array<double, 6> a = multiply_pair(ctx, u, z, product, product_z);
+            for (int c = 0; c < 3; ++c) {
+                if (u.active[c]) u.alpha[c].push_back(a[c]);
+                if (z.active[c]) z.alpha[c].push_back(a[3 + c]);
+            }
+            advance(ctx, u, j, true, product, true);
+            advance(ctx, z, j, true, product_z);
+        } else {
+            if (u_active) step(ctx, u, j, product, true);
+            if (z_active) step(ctx, z, j, product);
+        }
         if (mc_active) step(*mc->ctx, mc->u, j, product, true);
         if (ctx.p.progress) ctx.p.progress(0.7 * (1 - 16.0 / (16.0 + j)));
         const bool exhausted =
