@@ -460,8 +460,8 @@ struct Perturbation {
 };
 
 // Appends b n . v_j for the current basis vector of every active column: one pass for the three
-// columns, summed in fixed blocks (the same bits on any number of threads). Rows off the data
-// add nothing. (Three serial passes, one per column, took 12.6 % of perf's samples of an
+// columns, summed in fixed blocks (the same bits on any number of threads), which also divides
+// a pending basis vector by beta (Lanczos::pending). Rows off the data add nothing. (Three serial passes, one per column, took 12.6 % of perf's samples of an
 // automatic scale-dependent L^2 step on the 1 M-face torus, one thread.)
 void record(Lanczos& l, const std::vector<signed char>& sign, const Positions& normals,
             const char* free, std::array<std::vector<double>, 3>& w, int threads) {
