@@ -243,8 +243,8 @@ std::array<double, 3> multiply(Context& ctx, Lanczos& l, Positions& product) {
 // multiply() for two processes on the same first-order operator without soft weights (the
 // movement and the Hutchinson probes of a linear operator), in one pass over K: each row's
 // entries are read from memory once and used for both (the second k_row finds them cached).
-// The same arithmetic, row for row and block for block, as two apply_dot calls, so the same
-// bits. Returns alpha for a ([0..2]) and b ([3..5]).
+// The same arithmetic (system_row), row for row and block for block, as two apply_dot calls,
+// so the same bits. Returns alpha for a ([0..2]) and b ([3..5]).
 std::array<double, 6> multiply_pair(Context& ctx, const Lanczos& a, const Lanczos& b,
                                     Positions& product_a, Positions& product_b) {
     const LinearSystem& system = ctx.c;
@@ -269,15 +269,7 @@ std::array<double, 6> multiply_pair(Context& ctx, const Lanczos& a, const Lanczo
         for (int k = 0; k < 2; ++k) {
             double s0, s1, s2;
             k_row(i, x[k], start, column, weight, s0, s1, s2);
-            const double* xi = x[k] + 3 * i;
-            double* yi = y[k] + 3 * i;
-            yi[0] = di * xi[0] + scale * s0;
-            yi[1] = di * xi[1] + scale * s1;
-            yi[2] = di * xi[2] + scale * s2;
-            if (!f[i]) continue;
-            sum[3 * k] += xi[0] * yi[0];
-            sum[3 * k + 1] += xi[1] * yi[1];
-            sum[3 * k + 2] += xi[2] * yi[2];
+            system_row(di, scale, x[k] + 3 * i, s0, s1, s2, f[i] != 0, y[k] + 3 * i, sum + 3 * k);
         }
     });
 }
@@ -461,19 +453,19 @@ struct Perturbation {
 
 // Appends b n . v_j for the current basis vector of every active column: one pass for the three
 // columns, summed in fixed blocks (the same bits on any number of threads), which also divides
-// a pending basis vector by beta (Lanczos::pending). Rows off the data add nothing. (Three serial passes, one per column, took 12.6 % of perf's samples of an
-// automatic scale-dependent L^2 step on the 1 M-face torus, one thread.)
+// a pending basis vector by beta (Lanczos::pending). Rows off the data add nothing. (Three
+// serial passes, one per column, took 12.6 % of perf's samples of an automatic
+// scale-dependent L^2 step on the 1 M-face torus, one thread.)
 void record(Lanczos& l, const std::vector<signed char>& sign, const Positions& normals,
             const char* free, std::array<std::vector<double>, 3>& w, int threads) {
     const signed char* b = sign.data();
     const double* nv = normals.data();
     double* v = l.current.data();
     const std::array<bool, 3> active = l.active;
-    const Lanczos& settled = l;
     const std::array<double, 3> sums =
-        blocked_sum<3>(static_cast<int>(sign.size()), threads, [=, &settled](int i, double* a) {
+        blocked_sum<3>(static_cast<int>(sign.size()), threads, [=, &l](int i, double* a) {
             for (int c = 0; c < 3; ++c) {
-                const double vc = settle(settled, free, v, i, c);
+                const double vc = settle(l, free, v, i, c);
                 if (b[i] && active[c]) a[c] += b[i] * nv[3 * i + c] * vc;
             }
         });
@@ -718,7 +710,6 @@ public:
         const signed char* b_sign = probe ? probe->data() : nullptr;
         const double* nv = normals.data();
         double* v = u.current.data();
-        const Lanczos& settled = u;
         double* sums = chunk_sums_.data();
         (void)threads;
         FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1 && chunks > 1))
@@ -732,7 +723,7 @@ public:
                 const int k = i < components_known ? component[i] : -1;
                 const int bi = b_sign ? b_sign[i] : 0;
                 double vi[3];
-                for (int c = 0; c < 3; ++c) vi[c] = settle(settled, free, v, i, c);
+                for (int c = 0; c < 3; ++c) vi[c] = settle(u, free, v, i, c);
                 if (b < 0 && k < 0 && bi == 0) continue;
                 for (int c = 0; c < 3; ++c) {
                     if (slot[c] < 0) continue;
@@ -951,11 +942,11 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sk
     int next_check = 6;
     Positions product;  // the processes' products, one at a time
     Positions product_z;  // the probes' beside the movement's (multiply_pair)
+    const char* free = ctx.p.free->data();
     for (int j = 0; j < kMaxSteps; ++j) {
         const bool u_active = u.active[0] || u.active[1] || u.active[2];
         const bool z_active = !mc && (z.active[0] || z.active[1] || z.active[2]);
         const bool mc_active = mc && (mc->u.active[0] || mc->u.active[1] || mc->u.active[2]);
-        const char* free = ctx.p.free->data();
         if (u_active)
             sketch.add(u, normals, free, ctx.p.op->threads, mc ? &mc->sign : nullptr, mc ? &mc->w : nullptr);
         if (mc_active) record(mc->u, mc->sign, normals, free, mc->w_perturbed, ctx.p.op->threads);

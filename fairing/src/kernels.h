@@ -59,6 +59,20 @@ inline void k_row(int i, const double* xs, const int* start, const int* column,
     }
 }
 
+// Row i of A x = D x + scale (K v)_i into yi, given (s0, s1, s2) = (K v)_i and D_i = di, and on a
+// free row its share x_i . (A x)_i added to a[0..2]: the row of LinearSystem::apply_dot, which
+// the strength estimate's paired product (auto_strength.cpp, multiply_pair) repeats bit for bit.
+inline void system_row(double di, double scale, const double* xi, double s0, double s1, double s2,
+                       bool free_row, double* yi, double* a) {
+    yi[0] = di * xi[0] + scale * s0;
+    yi[1] = di * xi[1] + scale * s1;
+    yi[2] = di * xi[2] + scale * s2;
+    if (!free_row) return;
+    a[0] += xi[0] * yi[0];
+    a[1] += xi[1] * yi[1];
+    a[2] += xi[2] * yi[2];
+}
+
 // Rows per block of the deterministic sums below. Each block is summed in row order and the
 // blocks' partial sums are then added in block order, so a sum has the same bits whatever the
 // number of threads (OpenMP's reduction clause adds per-thread partials, whose split depends on

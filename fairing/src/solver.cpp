@@ -85,17 +85,8 @@ Column3 LinearSystem::apply_dot(const Positions& x, Positions& y, Positions& scr
     }
     const double scale = sign * lambda;
     return detail::sum_over_k_rows(*op, *v, [=](int i, double s0, double s1, double s2, double* a) {
-        const double* xi = xs + 3 * i;
-        double* yi = ys + 3 * i;
         // D = 0 still adds 0 x_i, so the bits are those of an explicit diagonal of zeros.
-        const double di = d ? d[i] : 0.0;
-        yi[0] = di * xi[0] + scale * s0;
-        yi[1] = di * xi[1] + scale * s1;
-        yi[2] = di * xi[2] + scale * s2;
-        if (!f[i]) return;
-        a[0] = xi[0] * yi[0];
-        a[1] = xi[1] * yi[1];
-        a[2] = xi[2] * yi[2];
+        detail::system_row(d ? d[i] : 0.0, scale, xs + 3 * i, s0, s1, s2, f[i] != 0, ys + 3 * i, a);
     });
 }
 
