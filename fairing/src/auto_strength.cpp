@@ -240,38 +240,45 @@ std::array<double, 3> multiply(Context& ctx, Lanczos& l, Positions& product) {
     return dot;
 }
 
-// multiply() for two processes on the same first-order operator without soft weights (the
-// movement and the Hutchinson probes of a linear operator), in one pass over K: each row's
-// entries are read from memory once and used for both (the second k_row finds them cached).
-// The same arithmetic (system_row), row for row and block for block, as two apply_dot calls,
-// so the same bits. Returns alpha for a ([0..2]) and b ([3..5]).
-std::array<double, 6> multiply_pair(Context& ctx, const Lanczos& a, const Lanczos& b,
-                                    Positions& product_a, Positions& product_b) {
-    const LinearSystem& system = ctx.c;
-    const SparseOperator& op = *system.op;
+// multiply() for two processes on first-order operators of the same sparsity pattern, without
+// soft weights, in one pass over the pattern: the movement and the Hutchinson probes of a linear
+// operator (one operator), or the movement and the Monte-Carlo perturbed movement (the operators
+// at the data and at the perturbed data: the same rows and columns, other weights). Each row's
+// columns are read once, from `sa`'s operator (a second k_row on the same operator finds its
+// entries cached). The same arithmetic (system_row), row for row and block for block, as two
+// apply_dot calls, so the same bits. Returns alpha for a ([0..2]) and b ([3..5]).
+std::array<double, 6> multiply_pair(const LinearSystem& sa, const Lanczos& a, const LinearSystem& sb,
+                                    const Lanczos& b, Positions& product_a, Positions& product_b) {
+    const SparseOperator& op = *sa.op;
     const int n = op.size();
     product_a.resize(n, 3);
     product_b.resize(n, 3);
-    const double* xa = a.current.data();
-    const double* xb = b.current.data();
-    double* ya = product_a.data();
-    double* yb = product_b.data();
-    const double* d = system.diagonal.empty() ? nullptr : system.diagonal.data();
-    const char* f = system.free.data();
+    const double* xs[2] = {a.current.data(), b.current.data()};
+    double* ys[2] = {product_a.data(), product_b.data()};
+    const double* ds[2] = {sa.diagonal.empty() ? nullptr : sa.diagonal.data(),
+                           sb.diagonal.empty() ? nullptr : sb.diagonal.data()};
+    const double* weights[2] = {op.weight.data(), sb.op->weight.data()};
+    const char* fs[2] = {sa.free.data(), sb.free.data()};
     const int* start = op.row_start.data();
     const int* column = op.column.data();
-    const double* weight = op.weight.data();
-    const double scale = -system.lambda_dt;  // order 1: A = D - lambda_dt K
+    // Order 1: A = D - lambda_dt K.
+    const double scales[2] = {-sa.lambda_dt, -sb.lambda_dt};
     return blocked_sum<6>(n, op.threads, [=](int i, double* sum) {
-        const double di = d ? d[i] : 0.0;
-        const double* x[2] = {xa, xb};
-        double* y[2] = {ya, yb};
         for (int k = 0; k < 2; ++k) {
             double s0, s1, s2;
-            k_row(i, x[k], start, column, weight, s0, s1, s2);
-            system_row(di, scale, x[k] + 3 * i, s0, s1, s2, f[i] != 0, y[k] + 3 * i, sum + 3 * k);
+            k_row(i, xs[k], start, column, weights[k], s0, s1, s2);
+            system_row(ds[k] ? ds[k][i] : 0.0, scales[k], xs[k] + 3 * i, s0, s1, s2, fs[k][i] != 0,
+                       ys[k] + 3 * i, sum + 3 * k);
         }
     });
+}
+
+// Whether multiply_pair serves the processes of contexts a and b (one check per search: it
+// compares the sparsity patterns).
+bool pairable(const Context& a, const Context& b) {
+    return a.weight_root.empty() && b.weight_root.empty() && a.c.order == 1 && b.c.order == 1 &&
+           (a.c.op == b.c.op ||
+            (a.c.op->row_start == b.c.op->row_start && a.c.op->column == b.c.op->column));
 }
 
 // One recurrence step given alpha_j and beta_{j-1}: previous <- the next basis vector. With
@@ -675,15 +682,19 @@ public:
     }
     bool exact() const { return exact_; }
     // Adds the current basis vector of every active column and, with `probe` (the Monte-Carlo
-    // probe's signs b), appends b n . v to (*probed)[c] (Perturbation::w). One pass over the
-    // vertices for the three columns, as kSketchChunks fixed chunks of rows run in parallel:
+    // probe's signs b), appends b n . v to (*probed)[c] (Perturbation::w), and with `partner`
+    // (the perturbed movement's process) b n . v' of its current basis vector v' to
+    // (*partner_probed)[c] (Perturbation::w_perturbed), settling v' as record() would. One pass
+    // over the vertices for all of it, as kSketchChunks fixed chunks of rows run in parallel:
     // each chunk sums into its own buckets, which are then added in chunk order, so the sums
     // do not depend on the number of threads. (Serial, with the probe's sums a pass of their
     // own, these took 15 % of perf's samples of an automatic scale-dependent L^2 step on the
-    // 1 M-face torus with two threads.)
+    // 1 M-face torus with two threads; the partner's functionals, a pass of their own, 6 % with
+    // one thread.)
     void add(Lanczos& u, const Positions& normals, const char* free, int threads,
              const std::vector<signed char>* probe = nullptr,
-             std::array<std::vector<double>, 3>* probed = nullptr) {
+             std::array<std::vector<double>, 3>* probed = nullptr, Lanczos* partner = nullptr,
+             std::array<std::vector<double>, 3>* partner_probed = nullptr) {
         std::array<Eigen::Index, 3> slot{{-1, -1, -1}};
         for (int c = 0; c < 3; ++c) {
             if (!u.active[c]) continue;
@@ -699,7 +710,7 @@ public:
         const int chunks = nc <= kSketchChunkComponents ? kSketchChunks : 1;
         const int per_chunk = (n + chunks - 1) / chunks;
         const std::size_t buckets = 3 * static_cast<std::size_t>(rows_);
-        const std::size_t stride = buckets + 9 * static_cast<std::size_t>(nc) + 3;
+        const std::size_t stride = buckets + 9 * static_cast<std::size_t>(nc) + 6;
         chunk_sums_.assign(chunks * stride, 0.0);
         const int* bucket = bucket_.data();
         const float* sign = sign_.data();
@@ -710,6 +721,9 @@ public:
         const signed char* b_sign = probe ? probe->data() : nullptr;
         const double* nv = normals.data();
         double* v = u.current.data();
+        double* v_partner = partner ? partner->current.data() : nullptr;
+        const std::array<bool, 3> partner_active =
+            partner ? partner->active : std::array<bool, 3>{{false, false, false}};
         double* sums = chunk_sums_.data();
         (void)threads;
         FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1 && chunks > 1))
@@ -724,6 +738,12 @@ public:
                 const int bi = b_sign ? b_sign[i] : 0;
                 double vi[3];
                 for (int c = 0; c < 3; ++c) vi[c] = settle(u, free, v, i, c);
+                if (v_partner) {
+                    for (int c = 0; c < 3; ++c) {
+                        const double vc = settle(*partner, free, v_partner, i, c);
+                        if (bi != 0 && partner_active[c]) to_probe[3 + c] += bi * nv[3 * i + c] * vc;
+                    }
+                }
                 if (b < 0 && k < 0 && bi == 0) continue;
                 for (int c = 0; c < 3; ++c) {
                     if (slot[c] < 0) continue;
@@ -738,8 +758,9 @@ public:
             }
         }
         u.pending = false;
+        if (partner) partner->pending = false;
         std::array<std::vector<double>, 3> by_volume, by_field, by_sum;
-        std::array<double, 3> probe_sum{{0, 0, 0}};
+        std::array<double, 3> probe_sum{{0, 0, 0}}, partner_sum{{0, 0, 0}};
         for (int c = 0; c < 3; ++c) by_volume[c].assign(slot[c] >= 0 ? nc : 0, 0.0);
         by_field = by_sum = by_volume;
         for (int chunk = 0; chunk < chunks; ++chunk) {
@@ -756,6 +777,7 @@ public:
                 }
                 probe_sum[c] += from_probe[c];
             }
+            for (int c = 0; c < 3; ++c) partner_sum[c] += from_probe[3 + c];
         }
         for (int c = 0; c < 3; ++c) {
             if (slot[c] < 0) continue;
@@ -764,6 +786,8 @@ public:
             sum_part_.push_back(std::move(by_sum[c]));
             if (probed) (*probed)[c].push_back(probe_sum[c]);
         }
+        for (int c = 0; c < 3; ++c)
+            if (partner_probed && partner_active[c]) (*partner_probed)[c].push_back(partner_sum[c]);
     }
     // |sum_c S_c y_c(lambda)|^2 for every lambda of `grid` from `first` to `last` (exclusive),
     // with y from the Lanczos tridiagonal matrices; NaN elsewhere.
@@ -941,30 +965,40 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sk
     bool previous_at_edge = false;
     int next_check = 6;
     Positions product;  // the processes' products, one at a time
-    Positions product_z;  // the probes' beside the movement's (multiply_pair)
+    Positions product_b;  // the second process's beside the movement's (multiply_pair)
+    // The movement's product shares its pass over the operator with the probes' (linear
+    // operator) or the perturbed movement's (Monte-Carlo divergence).
+    Context* partner_ctx = mc ? mc->ctx.get() : &ctx;
+    Lanczos& partner = mc ? mc->u : z;
+    const bool paired = pairable(ctx, *partner_ctx);
     const char* free = ctx.p.free->data();
     for (int j = 0; j < kMaxSteps; ++j) {
         const bool u_active = u.active[0] || u.active[1] || u.active[2];
         const bool z_active = !mc && (z.active[0] || z.active[1] || z.active[2]);
         const bool mc_active = mc && (mc->u.active[0] || mc->u.active[1] || mc->u.active[2]);
+        const bool partner_active = mc ? mc_active : z_active;
         if (u_active)
-            sketch.add(u, normals, free, ctx.p.op->threads, mc ? &mc->sign : nullptr, mc ? &mc->w : nullptr);
-        if (mc_active) record(mc->u, mc->sign, normals, free, mc->w_perturbed, ctx.p.op->threads);
+            sketch.add(u, normals, free, ctx.p.op->threads, mc ? &mc->sign : nullptr,
+                       mc ? &mc->w : nullptr, mc_active ? &mc->u : nullptr,
+                       mc_active ? &mc->w_perturbed : nullptr);
+        else if (mc_active)
+            record(mc->u, mc->sign, normals, free, mc->w_perturbed, ctx.p.op->threads);
         // u's and the perturbed process's next basis vectors are divided by beta in the passes
         // above at the next step (one pass over each fewer per step).
-        if (u_active && z_active && ctx.weight_root.empty() && ctx.c.order == 1) {
-            const std::array<double, 6> a = multiply_pair(ctx, u, z, product, product_z);
+        if (paired && u_active && partner_active) {
+            const std::array<double, 6> a =
+                multiply_pair(ctx.c, u, partner_ctx->c, partner, product, product_b);
             for (int c = 0; c < 3; ++c) {
                 if (u.active[c]) u.alpha[c].push_back(a[c]);
-                if (z.active[c]) z.alpha[c].push_back(a[3 + c]);
+                if (partner.active[c]) partner.alpha[c].push_back(a[3 + c]);
             }
             advance(ctx, u, j, true, product, true);
-            advance(ctx, z, j, true, product_z);
+            advance(*partner_ctx, partner, j, true, product_b, mc != nullptr);
         } else {
             if (u_active) step(ctx, u, j, product, true);
             if (z_active) step(ctx, z, j, product);
+            if (mc_active) step(*mc->ctx, mc->u, j, product, true);
         }
-        if (mc_active) step(*mc->ctx, mc->u, j, product, true);
         if (ctx.p.progress) ctx.p.progress(0.7 * (1 - 16.0 / (16.0 + j)));
         const bool exhausted =
             !(u.active[0] || u.active[1] || u.active[2] ||
