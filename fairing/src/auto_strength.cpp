@@ -456,6 +456,10 @@ struct Perturbation {
     std::unique_ptr<Context> ctx;
     Lanczos u;
     std::array<std::vector<double>, 3> w, w_perturbed;  // [c][j]: b n . (basis vector j)
+    // The movement's and this process's products share a pass (multiply_pair), which reads the
+    // rows and columns of the surface operator only: op's own copies are released (28 bytes per
+    // vertex).
+    bool paired = false;
 };
 
 // Appends b n . v_j for the current basis vector of every active column: one pass for the three
@@ -577,6 +581,11 @@ std::unique_ptr<Perturbation> perturb(const Context& ctx, const Positions& norma
     }
     start_movement(*mc->ctx, mc->u);
     mc->x.resize(0, 3);  // only the start vector needed the perturbed positions
+    mc->paired = pairable(ctx, *mc->ctx);
+    if (mc->paired) {
+        std::vector<int>().swap(mc->op.row_start);
+        std::vector<int>().swap(mc->op.column);
+    }
     return mc;
 }
 
@@ -613,6 +622,8 @@ constexpr int kSketch = 8192;
 // the most restored components it still splits into chunks for.
 constexpr int kSketchChunks = 8;
 constexpr int kSketchChunkComponents = 1024;
+// Basis vectors per block of the sketch's storage (Sketch::blocks_).
+constexpr Eigen::Index kSketchBlock = 64;
 // Soft weights: the model of Context::weight_root holds where the chosen filter acts on the
 // noise's scale, not where it reaches the smoothest modes. Its choice keeping less than this
 // share of the noise (tr H / N) is redone on the L^2 operator itself, unless the weights are
@@ -698,9 +709,8 @@ public:
         std::array<Eigen::Index, 3> slot{{-1, -1, -1}};
         for (int c = 0; c < 3; ++c) {
             if (!u.active[c]) continue;
-            if (used_ == columns_.cols())
-                columns_.conservativeResize(rows_, std::max<Eigen::Index>(24, 2 * used_));
-            columns_.col(used_).setZero();
+            if (used_ == static_cast<Eigen::Index>(blocks_.size()) * kSketchBlock)
+                blocks_.emplace_back(Eigen::MatrixXd::Zero(rows_, kSketchBlock));
             index_[c].push_back(static_cast<int>(used_));
             slot[c] = used_++;
         }
@@ -769,7 +779,8 @@ public:
             const double* from_probe = from_component + 9 * static_cast<std::size_t>(nc);
             for (int c = 0; c < 3; ++c) {
                 if (slot[c] < 0) continue;
-                for (int b = 0; b < rows_; ++b) columns_(b, slot[c]) += from_bucket[3 * b + c];
+                double* column = column_data(slot[c]);
+                for (int b = 0; b < rows_; ++b) column[b] += from_bucket[3 * b + c];
                 for (int k = 0; k < nc; ++k) {
                     by_volume[c][k] += from_component[9 * k + c];
                     by_field[c][k] += from_component[9 * k + 3 + c];
@@ -809,7 +820,13 @@ public:
                         u.start_norm[c] * coef(j);
             }
         }
-        const Eigen::MatrixXd v = columns_.leftCols(used_) * y;  // one product for all lambda
+        // One product per block of columns for all lambda.
+        Eigen::MatrixXd v = Eigen::MatrixXd::Zero(rows_, y.cols());
+        for (std::size_t k = 0; k < blocks_.size(); ++k) {
+            const Eigen::Index first_column = static_cast<Eigen::Index>(k) * kSketchBlock;
+            const Eigen::Index width = std::min<Eigen::Index>(kSketchBlock, used_ - first_column);
+            v.noalias() += blocks_[k].leftCols(width) * y.middleRows(first_column, width);
+        }
         for (std::size_t g = first; g < last; ++g) {
             const Eigen::Index col = static_cast<Eigen::Index>(g - first);
             double gain = 1;
@@ -883,7 +900,13 @@ private:
     std::vector<int> bucket_;  // per vertex, -1 off the data
     std::vector<float> sign_;
     std::vector<double> chunk_sums_;  // add()'s sums per chunk (scratch, kept between steps)
-    Eigen::MatrixXd columns_;  // rows_ x capacity
+    // The sketched basis vectors, rows_ x kSketchBlock each: blocks rather than one matrix grown
+    // by doubling, whose copy held the old and the new matrix at once (1.5x the final size: 150
+    // bytes per vertex on the 1 M-face torus, whose processes run 212 steps).
+    std::vector<Eigen::MatrixXd> blocks_;
+    double* column_data(Eigen::Index column) {
+        return blocks_[static_cast<std::size_t>(column / kSketchBlock)].col(column % kSketchBlock).data();
+    }
     Eigen::Index used_ = 0;
     std::array<std::vector<int>, 3> index_;  // [c][j]: column of basis vector j of process c
 };
@@ -970,7 +993,7 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sk
     // operator) or the perturbed movement's (Monte-Carlo divergence).
     Context* partner_ctx = mc ? mc->ctx.get() : &ctx;
     Lanczos& partner = mc ? mc->u : z;
-    const bool paired = pairable(ctx, *partner_ctx);
+    const bool paired = mc ? mc->paired : pairable(ctx, ctx);
     const char* free = ctx.p.free->data();
     for (int j = 0; j < kMaxSteps; ++j) {
         const bool u_active = u.active[0] || u.active[1] || u.active[2];
