@@ -59,6 +59,20 @@ inline void k_row(int i, const double* xs, const int* start, const int* column,
     }
 }
 
+// k_row for an operator whose weights are all 1 (the umbrella's K), without reading them: the
+// same bits, since 1 * d = d exactly.
+inline void k_row_unit(int i, const double* xs, const int* start, const int* column, double& s0,
+                       double& s1, double& s2) {
+    const double xi0 = xs[3 * i], xi1 = xs[3 * i + 1], xi2 = xs[3 * i + 2];
+    s0 = s1 = s2 = 0;
+    for (int k = start[i]; k < start[i + 1]; ++k) {
+        const double* xj = xs + 3 * column[k];
+        s0 += xj[0] - xi0;
+        s1 += xj[1] - xi1;
+        s2 += xj[2] - xi2;
+    }
+}
+
 // Row i of A x = D x + scale (K v)_i into yi, given (s0, s1, s2) = (K v)_i and D_i = di, and on a
 // free row its share x_i . (A x)_i added to a[0..2]: the row of LinearSystem::apply_dot, which
 // the strength estimate's paired product (auto_strength.cpp, multiply_pair) repeats bit for bit.
