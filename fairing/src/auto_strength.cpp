@@ -246,11 +246,9 @@ std::array<double, 3> multiply(Context& ctx, Lanczos& l, Positions& product) {
 // at the data and at the perturbed data: the same rows and columns, other weights). Each row's
 // columns are read once, from `sa`'s operator (a second k_row on the same operator finds its
 // entries cached). The same arithmetic (system_row), row for row and block for block, as two
-// apply_dot calls, so the same bits. `unit`: every weight of both operators is 1 (the umbrella),
-// and none is read (k_row_unit). Returns alpha for a ([0..2]) and b ([3..5]).
+// apply_dot calls, so the same bits. Returns alpha for a ([0..2]) and b ([3..5]).
 std::array<double, 6> multiply_pair(const LinearSystem& sa, const Lanczos& a, const LinearSystem& sb,
-                                    const Lanczos& b, Positions& product_a, Positions& product_b,
-                                    bool unit) {
+                                    const Lanczos& b, Positions& product_a, Positions& product_b) {
     const SparseOperator& op = *sa.op;
     const int n = op.size();
     product_a.resize(n, 3);
@@ -259,7 +257,7 @@ std::array<double, 6> multiply_pair(const LinearSystem& sa, const Lanczos& a, co
     double* ys[2] = {product_a.data(), product_b.data()};
     const double* ds[2] = {sa.diagonal.empty() ? nullptr : sa.diagonal.data(),
                            sb.diagonal.empty() ? nullptr : sb.diagonal.data()};
-    const double* weights[2] = {op.weight.data(), sb.op->weight.data()};
+    const double* weights[2] = {weights_of(op), weights_of(*sb.op)};
     const char* fs[2] = {sa.free.data(), sb.free.data()};
     const int* start = op.row_start.data();
     const int* column = op.column.data();
@@ -268,8 +266,7 @@ std::array<double, 6> multiply_pair(const LinearSystem& sa, const Lanczos& a, co
     return blocked_sum<6>(n, op.threads, [=](int i, double* sum) {
         for (int k = 0; k < 2; ++k) {
             double s0, s1, s2;
-            if (unit) k_row_unit(i, xs[k], start, column, s0, s1, s2);
-            else k_row(i, xs[k], start, column, weights[k], s0, s1, s2);
+            k_row(i, xs[k], start, column, weights[k], s0, s1, s2);
             system_row(ds[k] ? ds[k][i] : 0.0, scales[k], xs[k] + 3 * i, s0, s1, s2, fs[k][i] != 0,
                        ys[k] + 3 * i, sum + 3 * k);
         }
@@ -539,6 +536,7 @@ void model_steps(const StrengthProblem& p, const Positions& x, SparseOperator& f
     const double share = (p.steps - 1.0) / p.steps;
     for (std::size_t k = 0; k < first.weight.size(); ++k)
         first.weight[k] += share * (later.weight[k] - first.weight[k]);
+    first.unit_weights = false;
     for (std::size_t i = 0; i < first.mass.size(); ++i)
         first.mass[i] += share * (later.mass[i] - first.mass[i]);
 }
@@ -997,12 +995,6 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sk
     Context* partner_ctx = mc ? mc->ctx.get() : &ctx;
     Lanczos& partner = mc ? mc->u : z;
     const bool paired = mc ? mc->paired : pairable(ctx, ctx);
-    // A linear operator's weights are all 1 for the umbrella (eq. 7): its pass skips them (a
-    // sixth of the bytes it reads on the 1 M-face torus).
-    const std::vector<double>& weight = ctx.p.op->weight;
-    const bool unit = paired && !mc && std::all_of(weight.begin(), weight.end(), [](double w) {
-        return w == 1.0;
-    });
     const char* free = ctx.p.free->data();
     for (int j = 0; j < kMaxSteps; ++j) {
         const bool u_active = u.active[0] || u.active[1] || u.active[2];
@@ -1019,7 +1011,7 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sk
         // above at the next step (one pass over each fewer per step).
         if (paired && u_active && partner_active) {
             const std::array<double, 6> a =
-                multiply_pair(ctx.c, u, partner_ctx->c, partner, product, product_b, unit);
+                multiply_pair(ctx.c, u, partner_ctx->c, partner, product, product_b);
             for (int c = 0; c < 3; ++c) {
                 if (u.active[c]) u.alpha[c].push_back(a[c]);
                 if (partner.active[c]) partner.alpha[c].push_back(a[3 + c]);

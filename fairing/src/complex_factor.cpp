@@ -34,10 +34,18 @@ void check_finite(Cx v, int iteration) {
 
 bool any(const std::array<bool, 3>& active) { return active[0] || active[1] || active[2]; }
 
-// (K v)_i of the vector held in the first three columns of a 6-column (complex) array.
+// (K v)_i of the vector held in the first three columns of a 6-column (complex) array; weight
+// null: all 1 (weights_of).
 inline void k_row_stride6(int i, const double* vs, const int* start, const int* column,
                           const double* weight, double k[3]) {
     k[0] = k[1] = k[2] = 0;
+    if (!weight) {
+        for (int e = start[i]; e < start[i + 1]; ++e) {
+            const double* vj = vs + 6 * column[e];
+            for (int c = 0; c < 3; ++c) k[c] += vj[c] - vs[6 * i + c];
+        }
+        return;
+    }
     for (int e = start[i]; e < start[i + 1]; ++e) {
         const double* vj = vs + 6 * column[e];
         for (int c = 0; c < 3; ++c) k[c] += weight[e] * (vj[c] - vs[6 * i + c]);
@@ -84,7 +92,7 @@ std::array<double, 6> ComplexFactorSolver::product(const Complex6& p, Complex6& 
     double* qs = q.data();
     const int* start = op.row_start.data();
     const int* column = op.column.data();
-    const double* weight = op.weight.data();
+    const double* weight = weights_of(op);
     const double* d = system_.diagonal.data();
     const char* f = system_.free.data();
     const double s = s_;
@@ -98,10 +106,17 @@ std::array<double, 6> ComplexFactorSolver::product(const Complex6& p, Complex6& 
         }
         const double* pi = ps + 6 * i;
         double k[6] = {0, 0, 0, 0, 0, 0};
-        for (int e = start[i]; e < start[i + 1]; ++e) {
-            const double w = weight[e];
-            const double* pj = ps + 6 * column[e];
-            for (int c = 0; c < 6; ++c) k[c] += w * (pj[c] - pi[c]);
+        if (weight) {
+            for (int e = start[i]; e < start[i + 1]; ++e) {
+                const double w = weight[e];
+                const double* pj = ps + 6 * column[e];
+                for (int c = 0; c < 6; ++c) k[c] += w * (pj[c] - pi[c]);
+            }
+        } else {
+            for (int e = start[i]; e < start[i + 1]; ++e) {
+                const double* pj = ps + 6 * column[e];
+                for (int c = 0; c < 6; ++c) k[c] += pj[c] - pi[c];
+            }
         }
         for (int c = 0; c < 3; ++c) {
             qi[c] = d[i] * pi[c] - s * k[3 + c];
@@ -125,7 +140,7 @@ std::array<double, 3> ComplexFactorSolver::l2_residual_norms(ResidualNorm norm) 
     });
     const int* start = op.row_start.data();
     const int* column = op.column.data();
-    const double* weight = op.weight.data();
+    const double* weight = weights_of(op);
     const double s = s_;
     const bool l2 = norm == ResidualNorm::L2;
     const std::array<double, 3> sums = blocked_reduce<3>(
@@ -241,7 +256,7 @@ std::array<double, 3> ComplexFactorSolver::set_residual(const Positions& b, cons
     double* rs = r_.data();
     const int* start = op.row_start.data();
     const int* column = op.column.data();
-    const double* weight = op.weight.data();
+    const double* weight = weights_of(op);
     for_each_row(n, op.threads, [=](int i) {
         double k[3];
         k_row(i, xs, start, column, weight, k[0], k[1], k[2]);

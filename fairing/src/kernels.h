@@ -45,18 +45,9 @@ void for_each_row(int n, int threads, Fn fn) {
     for (int i = 0; i < n; ++i) fn(i);
 }
 
-// (s0, s1, s2) = (K x)_i = sum_j w_ij (x_j - x_i).
-inline void k_row(int i, const double* xs, const int* start, const int* column,
-                  const double* weight, double& s0, double& s1, double& s2) {
-    const double xi0 = xs[3 * i], xi1 = xs[3 * i + 1], xi2 = xs[3 * i + 2];
-    s0 = s1 = s2 = 0;
-    for (int k = start[i]; k < start[i + 1]; ++k) {
-        const double w = weight[k];
-        const double* xj = xs + 3 * column[k];
-        s0 += w * (xj[0] - xi0);
-        s1 += w * (xj[1] - xi1);
-        s2 += w * (xj[2] - xi2);
-    }
+// K's weights for the kernels below: null when they are all 1 (SparseOperator::unit_weights).
+inline const double* weights_of(const SparseOperator& op) {
+    return op.unit_weights ? nullptr : op.weight.data();
 }
 
 // k_row for an operator whose weights are all 1 (the umbrella's K), without reading them: the
@@ -70,6 +61,21 @@ inline void k_row_unit(int i, const double* xs, const int* start, const int* col
         s0 += xj[0] - xi0;
         s1 += xj[1] - xi1;
         s2 += xj[2] - xi2;
+    }
+}
+
+// (s0, s1, s2) = (K x)_i = sum_j w_ij (x_j - x_i); weight null: all 1 (weights_of).
+inline void k_row(int i, const double* xs, const int* start, const int* column,
+                  const double* weight, double& s0, double& s1, double& s2) {
+    if (!weight) return k_row_unit(i, xs, start, column, s0, s1, s2);
+    const double xi0 = xs[3 * i], xi1 = xs[3 * i + 1], xi2 = xs[3 * i + 2];
+    s0 = s1 = s2 = 0;
+    for (int k = start[i]; k < start[i + 1]; ++k) {
+        const double w = weight[k];
+        const double* xj = xs + 3 * column[k];
+        s0 += w * (xj[0] - xi0);
+        s1 += w * (xj[1] - xi1);
+        s2 += w * (xj[2] - xi2);
     }
 }
 
@@ -131,7 +137,7 @@ std::array<double, 3> sum_over_k_rows(const SparseOperator& op, const Positions&
     const double* xs = x.data();
     const int* start = op.row_start.data();
     const int* column = op.column.data();
-    const double* weight = op.weight.data();
+    const double* weight = weights_of(op);
     return blocked_sum<3>(op.size(), op.threads, [&](int i, double* a) {
         double s0, s1, s2;
         k_row(i, xs, start, column, weight, s0, s1, s2);
@@ -149,7 +155,7 @@ void for_each_k_row(const SparseOperator& op, const Positions& x, RowFn fn) {
     const double* xs = x.data();
     const int* start = op.row_start.data();
     const int* column = op.column.data();
-    const double* weight = op.weight.data();
+    const double* weight = weights_of(op);
     for_each_row(op.size(), op.threads, [&](int i) {
         double s0, s1, s2;
         k_row(i, xs, start, column, weight, s0, s1, s2);

@@ -375,6 +375,9 @@ SparseOperator assemble(Operator op, const HalfEdgeMesh& mesh, const Positions& 
     r.massless_vertices = static_cast<int>(massless);
 
     if (massless > 0) drop_massless(result);
+    result.unit_weights = op == Operator::Umbrella &&
+                          std::all_of(result.weight.begin(), result.weight.end(),
+                                      [](double w) { return w == 1.0; });
     return result;
 }
 

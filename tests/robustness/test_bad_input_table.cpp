@@ -210,8 +210,9 @@ TEST(BadInputTable, NeedleFacesSmoothOrAreExplained) {
                 EXPECT_EQ(r.zero_area_faces, 0);
                 // the needle does not blow up its neighbourhood
                 EXPECT_LT(meshes::max_row_distance(r.positions, m.positions), 2.0);
-                if (op == Operator::CurvatureFlow)
+                if (op == Operator::CurvatureFlow) {
                     EXPECT_TRUE(has_warning(r, "cotangent weights were capped at 100")) << warnings(r);
+                }
             } catch (const fairing::Error& e) {
                 const std::string msg = e.what();
                 EXPECT_NE(op, Operator::CurvatureFlow) << msg;

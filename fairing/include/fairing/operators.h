@@ -24,6 +24,9 @@ struct SparseOperator {
     std::vector<double> weight;  // w_ij
     std::vector<double> mass;    // M_ii
     int threads = 1;             // threads for products with K (see Options::threads)
+    // Every w_ij is 1 (the umbrella, eq. 7): products with K need not read `weight` (the same
+    // bits, since 1 * d = d). Set by assemble(); whoever changes the weights clears it.
+    bool unit_weights = false;
 
     int size() const { return static_cast<int>(mass.size()); }
     double diagonal(int i) const;  // K_ii = -sum_j w_ij
