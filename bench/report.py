@@ -211,6 +211,7 @@ for m in meshes:
 def eng(mesh, op, order, ts, steps=1, threads=1, freeze=False):
     for r in R:
         if (r["mesh"] == mesh and r["group"] == "issue12" and r.get("op") == op and r.get("order") == order
+                and not r.get("automatic")
                 and abs(r.get("time_step", -1) - ts) < 1e-9 * max(1, ts) and r.get("steps") == steps
                 and r.get("threads") == threads and bool(r.get("freeze")) == freeze):
             return r
@@ -263,6 +264,23 @@ for m in meshes:
     targets.append(("g. curvature L² ts=22.5: 10 steps, frozen operator / 1 step, CPU s", m,
                     "%s (%s s / %s s; iterations %s / %s)" % (f(x, 2), f(cpu(ten)), f(cpu(unit)), its(ten), its(unit)),
                     "≤ 3", le(x, 3)))
+    # The one-click defaults: the automatic time step (runs of bench/run_bench.py engine_automatic).
+    for op in ("umbrella", "scale-dependent", "curvature"):
+        auto = next((r for r in R if r["mesh"] == m and r["group"] == "issue12" and r.get("automatic")
+                     and r.get("op") == op), None)
+        if auto is None:
+            continue
+        ts = auto["time_step"]
+        l2, l1 = eng(m, op, 2, ts), eng(m, op, 1, ts ** 0.5)
+        x = q(cpu(l2), cpu(l1))
+        targets.append(("g. %s L² at the automatic default's ts=%.4g / L ts=%.4g (equal cutoff), 1 thread, CPU s"
+                        % (op, ts, ts ** 0.5), m,
+                        "%s (%s s / %s s; iterations %s / %s)" % (f(x, 2), f(cpu(l2)), f(cpu(l1)), its(l2), its(l1)),
+                        "≤ 1.3", le(x, 1.3)))
+        x = auto.get("extra_bytes_per_vertex")
+        targets.append(("g. engine extra peak memory at the one-click default (%s L², automatic ts=%.4g), bytes / vertex"
+                        % (op, ts), m, "%s (estimate %s s, step and estimate %s s CPU)" % (
+                            f(x, 0), f(auto.get("strength_seconds")), f(cpu(auto))), "≤ 150", le(x, 150)))
     for op, ts in ((("umbrella", 10.0), ("scale-dependent", 2.5), ("curvature", 22.5))):
         r = eng(m, op, 2, ts)
         x = r and r.get("extra_bytes_per_vertex")
