@@ -1009,15 +1009,17 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sk
             record(mc->u, mc->sign, normals, free, mc->w_perturbed, ctx.p.op->threads);
         // u's and the perturbed process's next basis vectors are divided by beta in the passes
         // above at the next step (one pass over each fewer per step).
-        if (paired && u_active && partner_active) {
+        // Paired, both products come from multiply_pair even when one process has broken down
+        // (the perturbed operator has given its pattern back: apply_dot cannot run on it).
+        if (paired && (u_active || partner_active)) {
             const std::array<double, 6> a =
                 multiply_pair(ctx.c, u, partner_ctx->c, partner, product, product_b);
             for (int c = 0; c < 3; ++c) {
-                if (u.active[c]) u.alpha[c].push_back(a[c]);
-                if (partner.active[c]) partner.alpha[c].push_back(a[3 + c]);
+                if (u_active && u.active[c]) u.alpha[c].push_back(a[c]);
+                if (partner_active && partner.active[c]) partner.alpha[c].push_back(a[3 + c]);
             }
-            advance(ctx, u, j, true, product, true);
-            advance(*partner_ctx, partner, j, true, product_b, mc != nullptr);
+            if (u_active) advance(ctx, u, j, true, product, true);
+            if (partner_active) advance(*partner_ctx, partner, j, true, product_b, mc != nullptr);
         } else {
             if (u_active) step(ctx, u, j, product, true);
             if (z_active) step(ctx, z, j, product);
