@@ -425,7 +425,8 @@ void Run::restore() {
         // x_ may hold virtual vertices after the first n_ rows; they are not part of any
         // component and restore_measure only touches the component's own rows.
         const Restoration how =
-            restore_measure(he_, components[c], restorable_, target_[c], x_, options_.restoration);
+            restore_measure(he_, components[c], restorable_, target_[c], x_, options_.restoration,
+                            options_.threads);
         result_.components[c].restoration = how;
     }
 }
@@ -505,8 +506,8 @@ void Run::set_targets() {
         cr.faces = static_cast<int>(comp.faces.size());
         cr.closed = comp.closed();
         for (int v : comp.vertices) cr.has_fixed = cr.has_fixed || !restorable_[v];
-        cr.measure_before =
-            cr.closed ? component_volume(he_, comp, x_) : component_area(he_, comp, x_);
+        cr.measure_before = cr.closed ? component_volume(he_, comp, x_, options_.threads)
+                                      : component_area(he_, comp, x_, options_.threads);
         if (!options_.preserve_volume) continue;
         if (cr.closed) target_[c] = cr.measure_before;
         else if (options_.open_invariant == OpenInvariant::Area) target_[c] = cr.measure_before;
@@ -669,8 +670,8 @@ void Run::finish(const Eigen::RowVector3d& origin) {
     const auto& components = he_.components();
     for (std::size_t c = 0; c < components.size(); ++c) {
         ComponentReport& cr = result_.components[c];
-        cr.measure_after = cr.closed ? component_volume(he_, components[c], x_)
-                                     : component_area(he_, components[c], x_);
+        cr.measure_after = cr.closed ? component_volume(he_, components[c], x_, options_.threads)
+                                     : component_area(he_, components[c], x_, options_.threads);
         if (cr.closed) {
             result_.volume_before += cr.measure_before;
             result_.volume_after += cr.measure_after;

@@ -3,6 +3,7 @@
 #include "fairing/invariants.h"
 
 #include "geometry.h"
+#include "kernels.h"
 
 #include <array>
 #include <cmath>
@@ -22,16 +23,21 @@ void for_each_face(const HalfEdgeMesh& mesh, const Component& component, Positio
     }
 }
 
-// Volume (eq. 10, pyramids from the reference point o) or area of the component.
+// Volume (eq. 10, pyramids from the reference point o) or area of the component, summed in the
+// fixed blocks of detail::blocked_sum over its faces (the same bits on any number of threads).
 template <class Position>
 double measure(const HalfEdgeMesh& mesh, const Component& component, bool volume,
-               const Vec3& o, Position position) {
-    double sum = 0;
-    for_each_face(mesh, component, position, [&](const Vec3& a, const Vec3& b, const Vec3& c) {
-        if (volume) sum += (a - o).dot((b - o).cross(c - o)) / 6.0;
-        else sum += 0.5 * (b - a).cross(c - a).norm();
-    });
-    return sum;
+               const Vec3& o, Position position, int threads) {
+    const std::vector<Triangle>& faces = mesh.faces();
+    const int* list = component.faces.data();
+    const int count = static_cast<int>(component.faces.size());
+    return detail::blocked_sum<1>(
+        count, detail::threads_for(count, threads), [&](int k, double* sum) {
+            const Triangle& t = faces[list[k]];
+            const Vec3 a = position(t[0]), b = position(t[1]), c = position(t[2]);
+            if (volume) sum[0] += (a - o).dot((b - o).cross(c - o)) / 6.0;
+            else sum[0] += 0.5 * (b - a).cross(c - a).norm();
+        })[0];
 }
 
 // Centroid of the enclosed solid (volume) or of the surface (area).
@@ -58,16 +64,16 @@ Vec3 centroid(const HalfEdgeMesh& mesh, const Component& component, bool volume,
 }  // namespace
 
 double component_volume(const HalfEdgeMesh& mesh, const Component& component,
-                        const Positions& positions) {
+                        const Positions& positions, int threads) {
     if (component.vertices.empty()) return 0;
     return measure(mesh, component, true, detail::row(positions, component.vertices.front()),
-                   [&](int v) { return detail::row(positions, v); });
+                   [&](int v) { return detail::row(positions, v); }, threads);
 }
 
 double component_area(const HalfEdgeMesh& mesh, const Component& component,
-                      const Positions& positions) {
+                      const Positions& positions, int threads) {
     return measure(mesh, component, false, Vec3::Zero(),
-                   [&](int v) { return detail::row(positions, v); });
+                   [&](int v) { return detail::row(positions, v); }, threads);
 }
 
 Vec3 component_centroid(const HalfEdgeMesh& mesh, const Component& component,
@@ -88,25 +94,28 @@ void scale_component(const HalfEdgeMesh& mesh, const Component& component, bool 
 
 // The coefficients c_0..c_3 of the component's volume with every vertex v at
 // x_v + t normal[local[v]] (pyramids from o, eq. 10): det(a + t n_a, b + t n_b, c + t n_c) / 6
-// expanded by multilinearity.
+// expanded by multilinearity. Summed as measure() sums.
 std::array<double, 4> offset_volume_cubic(const HalfEdgeMesh& mesh, const Component& component,
                                           const Vec3& o, const Positions& x,
                                           const std::vector<Vec3>& normal,
-                                          const std::vector<int>& local) {
-    std::array<double, 4> c{{0, 0, 0, 0}};
-    for (int f : component.faces) {
-        const Triangle& t = mesh.faces()[f];
+                                          const std::vector<int>& local, int threads) {
+    const std::vector<Triangle>& faces = mesh.faces();
+    const int* list = component.faces.data();
+    const int count = static_cast<int>(component.faces.size());
+    std::array<double, 4> c = detail::blocked_sum<4>(
+        count, detail::threads_for(count, threads), [&](int k, double* sum) {
+        const Triangle& t = faces[list[k]];
         const Vec3 a = detail::row(x, t[0]) - o, b = detail::row(x, t[1]) - o,
                    d = detail::row(x, t[2]) - o;
         const Vec3& na = normal[local[t[0]]];
         const Vec3& nb = normal[local[t[1]]];
         const Vec3& nd = normal[local[t[2]]];
         const Vec3 bd = b.cross(d), nbd = nb.cross(d), bnd = b.cross(nd), nbnd = nb.cross(nd);
-        c[0] += a.dot(bd);
-        c[1] += na.dot(bd) + a.dot(nbd) + a.dot(bnd);
-        c[2] += na.dot(nbd) + na.dot(bnd) + a.dot(nbnd);
-        c[3] += na.dot(nbnd);
-    }
+        sum[0] += a.dot(bd);
+        sum[1] += na.dot(bd) + a.dot(nbd) + a.dot(bnd);
+        sum[2] += na.dot(nbd) + na.dot(bnd) + a.dot(nbnd);
+        sum[3] += na.dot(nbnd);
+    });
     for (double& k : c) k /= 6.0;
     return c;
 }
@@ -120,10 +129,12 @@ std::array<double, 4> offset_volume_cubic(const HalfEdgeMesh& mesh, const Compon
 // False (x untouched) if it is not.
 bool offset_component(const HalfEdgeMesh& mesh, const Component& component, bool volume,
                       const std::vector<char>& free, double sign, double target, double now,
-                      Positions& x) {
+                      Positions& x, int threads) {
     // Per vertex of the component only (its index in component.vertices), so that a mesh of
     // many small components costs their sizes, not the mesh's size per component.
-    thread_local std::vector<int> local;
+    // (A reference, so that the parallel passes below see the calling thread's vector.)
+    thread_local std::vector<int> local_storage;
+    std::vector<int>& local = local_storage;
     if (local.size() < static_cast<std::size_t>(x.rows())) local.resize(x.rows(), -1);
     for (std::size_t k = 0; k < component.vertices.size(); ++k) local[component.vertices[k]] = static_cast<int>(k);
     std::vector<Vec3> normal(component.vertices.size(), Vec3::Zero());
@@ -139,10 +150,10 @@ bool offset_component(const HalfEdgeMesh& mesh, const Component& component, bool
     }
     const Vec3 o = detail::row(x, component.vertices.front());
     const auto moved = [&](double t) {
-        return [&x, &normal, t](int v) { return Vec3(detail::row(x, v) + t * normal[local[v]]); };
+        return [&x, &normal, &local, t](int v) { return Vec3(detail::row(x, v) + t * normal[local[v]]); };
     };
     const auto residual = [&](double t) {
-        return sign * measure(mesh, component, volume, o, moved(t)) - target;
+        return sign * measure(mesh, component, volume, o, moved(t), threads) - target;
     };
     const double tolerance = 8 * std::numeric_limits<double>::epsilon() * target;
     double t0 = 0, f0 = 0, t1 = 0, f1 = 0;
@@ -151,7 +162,8 @@ bool offset_component(const HalfEdgeMesh& mesh, const Component& component, bool
         // each of its three offset vertices): one pass gives its coefficients, Newton's method
         // on the scalar cubic its root, and one direct evaluation checks it; the secant steps
         // below only polish what rounding left.
-        const std::array<double, 4> c = offset_volume_cubic(mesh, component, o, x, normal, local);
+        const std::array<double, 4> c =
+            offset_volume_cubic(mesh, component, o, x, normal, local, threads);
         const auto value = [&](double t) {
             return sign * (c[0] + t * (c[1] + t * (c[2] + t * c[3]))) - target;
         };
@@ -191,11 +203,13 @@ bool offset_component(const HalfEdgeMesh& mesh, const Component& component, bool
         f1 = residual(t1);
     }
     const bool found = std::isfinite(t1) && std::abs(f1) <= 1e-12 * target;
-    for (std::size_t k = 0; k < component.vertices.size(); ++k) {
-        const int v = component.vertices[k];
+    const int* vertices = component.vertices.data();
+    const int count = static_cast<int>(component.vertices.size());
+    detail::for_each_row(count, detail::threads_for(count, threads), [&](int k) {
+        const int v = vertices[k];
         if (found && free[v]) x.row(v) += t1 * normal[k].transpose();
         local[v] = -1;
-    }
+    });
     return found;
 }
 
@@ -203,7 +217,7 @@ bool offset_component(const HalfEdgeMesh& mesh, const Component& component, bool
 
 Restoration restore_measure(const HalfEdgeMesh& mesh, const Component& component,
                             const std::vector<char>& free, double target, Positions& x,
-                            VolumeRestoration how) {
+                            VolumeRestoration how, int threads) {
     const bool volume = component.closed();
     const char* what = volume ? "volume" : "area";
     int free_count = 0;
@@ -214,8 +228,8 @@ Restoration restore_measure(const HalfEdgeMesh& mesh, const Component& component
     const double sign = volume && target < 0 ? -1.0 : 1.0;
     target *= sign;
     const Vec3 o = detail::row(x, component.vertices.front());
-    const double now =
-        sign * measure(mesh, component, volume, o, [&](int v) { return detail::row(x, v); });
+    const double now = sign * measure(mesh, component, volume, o,
+                                      [&](int v) { return detail::row(x, v); }, threads);
     if (!(now > 0) || !(target > 0) || !std::isfinite(now))
         throw Error(std::string("the ") + what + " of a component became " +
                     (now > 0 ? "non-finite" : "zero or negative") +
@@ -227,7 +241,7 @@ Restoration restore_measure(const HalfEdgeMesh& mesh, const Component& component
     const bool whole = free_count == static_cast<int>(component.vertices.size());
     const bool offset = !whole || (how == VolumeRestoration::NormalOffset &&
                                    std::abs(target / now - 1) <= kMaxOffsetChange);
-    if (offset && offset_component(mesh, component, volume, free, sign, target, now, x))
+    if (offset && offset_component(mesh, component, volume, free, sign, target, now, x, threads))
         return Restoration::NormalOffset;
     if (!whole)
         throw Error(std::string("could not restore the ") + what +

@@ -12,11 +12,12 @@
 
 namespace fairing {
 
-// Eq. 10: V = 1/6 sum_k g_k . N_k over the component's faces.
+// Eq. 10: V = 1/6 sum_k g_k . N_k over the component's faces, summed in fixed blocks of faces
+// (the same bits on any number of threads; threads as Options::threads, one below 50 k faces).
 double component_volume(const HalfEdgeMesh& mesh, const Component& component,
-                        const Positions& positions);
+                        const Positions& positions, int threads = 1);
 double component_area(const HalfEdgeMesh& mesh, const Component& component,
-                      const Positions& positions);
+                      const Positions& positions, int threads = 1);
 
 // The centroid restore_measure scales about: of the enclosed solid (closed component) or of the
 // surface (open one).
@@ -34,9 +35,11 @@ constexpr double kMaxOffsetChange = 0.1;
 // normal) with t solved to machine precision, so fixed vertices do not move. Otherwise (or if no
 // t is found and nothing is fixed): scales about the centroid (the solid's for volume, the
 // surface's for area) by (target/now)^(1/3) or ^(1/2). Returns the method used. Throws Error if
-// a component with fixed vertices cannot be restored.
+// a component with fixed vertices cannot be restored. `threads` as for component_volume (the
+// result does not depend on it).
 Restoration restore_measure(const HalfEdgeMesh& mesh, const Component& component,
                             const std::vector<char>& free, double target, Positions& positions,
-                            VolumeRestoration how = VolumeRestoration::NormalOffset);
+                            VolumeRestoration how = VolumeRestoration::NormalOffset,
+                            int threads = 1);
 
 }  // namespace fairing
