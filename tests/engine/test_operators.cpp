@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <map>
 
 using fairing::HalfEdgeMesh;
@@ -572,5 +573,28 @@ TEST(Operators, NeedleCotangentsAreCappedAndStayNegativeSemiDefinite) {
             op.apply_k(x, kx);
             EXPECT_LE((x.array() * kx.array()).sum(), 1e-9 * largest);
         }
+    }
+}
+
+// The umbrella's K has every weight 1 (eq. 7), which assembly records so that products skip
+// reading them; the other operators' weights vary. Products with and without the shortcut give
+// the same bits (1 * d = d).
+TEST(Operators, UnitWeightsAreFlaggedAndSkippedExactly) {
+    for (Operator op : kOperators) {
+        SCOPED_TRACE(fairing::to_string(op));
+        const Assembled a = assemble(op, noisy_sphere());
+        EXPECT_EQ(a.op.unit_weights, op == Operator::Umbrella);
+        const Positions x = meshes::radial_noise(meshes::icosphere(2), 0.3, 5).positions;
+        SparseOperator plain = a.op;
+        plain.unit_weights = false;
+        Positions fast, slow, fast_l, slow_l;
+        a.op.apply_k(x, fast);
+        plain.apply_k(x, slow);
+        a.op.apply_l(x, fast_l);
+        plain.apply_l(x, slow_l);
+        ASSERT_EQ(fast.size(), slow.size());
+        EXPECT_EQ(0, std::memcmp(fast.data(), slow.data(), sizeof(double) * fast.size()));
+        EXPECT_EQ(0, std::memcmp(fast_l.data(), slow_l.data(), sizeof(double) * fast_l.size()));
+        EXPECT_GT(fast.norm(), 0);
     }
 }
