@@ -168,7 +168,7 @@ struct Lanczos {
     std::array<double, 3> start_norm{{0, 0, 0}};
     std::array<bool, 3> active{{true, true, true}};
     // With `pending`, current holds the next basis vector before its division by beta: the pass
-    // that reads it first (Sketch::add, record) scales it by `scale` as advance() would have,
+    // that reads it first (Sketch::add) scales it by `scale` as advance() would have,
     // on the free rows (0 elsewhere), and so saves advance() a pass over it.
     bool pending = false;
     std::array<double, 3> scale{{0, 0, 0}};
@@ -462,29 +462,6 @@ struct Perturbation {
     bool paired = false;
 };
 
-// Appends b n . v_j for the current basis vector of every active column: one pass for the three
-// columns, summed in fixed blocks (the same bits on any number of threads), which also divides
-// a pending basis vector by beta (Lanczos::pending). Rows off the data add nothing. (Three
-// serial passes, one per column, took 12.6 % of perf's samples of an automatic
-// scale-dependent L^2 step on the 1 M-face torus, one thread.)
-void record(Lanczos& l, const std::vector<signed char>& sign, const Positions& normals,
-            const char* free, std::array<std::vector<double>, 3>& w, int threads) {
-    const signed char* b = sign.data();
-    const double* nv = normals.data();
-    double* v = l.current.data();
-    const std::array<bool, 3> active = l.active;
-    const std::array<double, 3> sums =
-        blocked_sum<3>(static_cast<int>(sign.size()), threads, [=, &l](int i, double* a) {
-            for (int c = 0; c < 3; ++c) {
-                const double vc = settle(l, free, v, i, c);
-                if (b[i] && active[c]) a[c] += b[i] * nv[3 * i + c] * vc;
-            }
-        });
-    l.pending = false;
-    for (int c = 0; c < 3; ++c)
-        if (active[c]) w[c].push_back(sums[c]);
-}
-
 // b n . r(lambda) from a movement process and its functionals.
 double probed_movement(const Lanczos& l, const std::array<std::vector<double>, 3>& w,
                        const Filter& filter) {
@@ -696,10 +673,11 @@ public:
     // Adds the current basis vector of every active column and, with `probe` (the Monte-Carlo
     // probe's signs b), appends b n . v to (*probed)[c] (Perturbation::w), and with `partner`
     // (the perturbed movement's process) b n . v' of its current basis vector v' to
-    // (*partner_probed)[c] (Perturbation::w_perturbed), settling v' as record() would. One pass
-    // over the vertices for all of it, as kSketchChunks fixed chunks of rows run in parallel:
-    // each chunk sums into its own buckets, which are then added in chunk order, so the sums
-    // do not depend on the number of threads. (Serial, with the probe's sums a pass of their
+    // (*partner_probed)[c] (Perturbation::w_perturbed), dividing either's pending basis vector by
+    // beta (Lanczos::pending). A process that has broken down (no active column) adds nothing.
+    // One pass over the vertices for all of it, as kSketchChunks fixed chunks of rows run in
+    // parallel: each chunk sums into its own buckets, which are then added in chunk order, so the
+    // sums do not depend on the number of threads. (Serial, with the probe's sums a pass of their
     // own, these took 15 % of perf's samples of an automatic scale-dependent L^2 step on the
     // 1 M-face torus with two threads; the partner's functionals, a pass of their own, 6 % with
     // one thread.)
@@ -1001,12 +979,10 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sk
         const bool z_active = !mc && (z.active[0] || z.active[1] || z.active[2]);
         const bool mc_active = mc && (mc->u.active[0] || mc->u.active[1] || mc->u.active[2]);
         const bool partner_active = mc ? mc_active : z_active;
-        if (u_active)
+        if (u_active || mc_active)
             sketch.add(u, normals, free, ctx.p.op->threads, mc ? &mc->sign : nullptr,
                        mc ? &mc->w : nullptr, mc_active ? &mc->u : nullptr,
                        mc_active ? &mc->w_perturbed : nullptr);
-        else if (mc_active)
-            record(mc->u, mc->sign, normals, free, mc->w_perturbed, ctx.p.op->threads);
         // u's and the perturbed process's next basis vectors are divided by beta in the passes
         // above at the next step (one pass over each fewer per step).
         // Paired, both products come from multiply_pair even when one process has broken down
@@ -1015,8 +991,8 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sk
             const std::array<double, 6> a =
                 multiply_pair(ctx.c, u, partner_ctx->c, partner, product, product_b);
             for (int c = 0; c < 3; ++c) {
-                if (u_active && u.active[c]) u.alpha[c].push_back(a[c]);
-                if (partner_active && partner.active[c]) partner.alpha[c].push_back(a[3 + c]);
+                if (u.active[c]) u.alpha[c].push_back(a[c]);
+                if (partner.active[c]) partner.alpha[c].push_back(a[3 + c]);
             }
             if (u_active) advance(ctx, u, j, true, product, true);
             if (partner_active) advance(*partner_ctx, partner, j, true, product_b, mc != nullptr);

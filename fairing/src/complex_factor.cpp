@@ -35,21 +35,18 @@ void check_finite(Cx v, int iteration) {
 bool any(const std::array<bool, 3>& active) { return active[0] || active[1] || active[2]; }
 
 // (K v)_i of the vector held in the first three columns of a 6-column (complex) array; weight
-// null: all 1 (weights_of).
+// null: all 1 (weights_of, UnitWeights).
 inline void k_row_stride6(int i, const double* vs, const int* start, const int* column,
                           const double* weight, double k[3]) {
     k[0] = k[1] = k[2] = 0;
-    if (!weight) {
+    const auto accumulate = [&](const auto& w) {
         for (int e = start[i]; e < start[i + 1]; ++e) {
             const double* vj = vs + 6 * column[e];
-            for (int c = 0; c < 3; ++c) k[c] += vj[c] - vs[6 * i + c];
+            for (int c = 0; c < 3; ++c) k[c] += w[e] * (vj[c] - vs[6 * i + c]);
         }
-        return;
-    }
-    for (int e = start[i]; e < start[i + 1]; ++e) {
-        const double* vj = vs + 6 * column[e];
-        for (int c = 0; c < 3; ++c) k[c] += weight[e] * (vj[c] - vs[6 * i + c]);
-    }
+    };
+    if (weight) accumulate(weight);
+    else accumulate(UnitWeights{});
 }
 
 }  // namespace
@@ -106,18 +103,14 @@ std::array<double, 6> ComplexFactorSolver::product(const Complex6& p, Complex6& 
         }
         const double* pi = ps + 6 * i;
         double k[6] = {0, 0, 0, 0, 0, 0};
-        if (weight) {
-            for (int e = start[i]; e < start[i + 1]; ++e) {
-                const double w = weight[e];
-                const double* pj = ps + 6 * column[e];
-                for (int c = 0; c < 6; ++c) k[c] += w * (pj[c] - pi[c]);
-            }
-        } else {
+        const auto accumulate = [&](const auto& w) {
             for (int e = start[i]; e < start[i + 1]; ++e) {
                 const double* pj = ps + 6 * column[e];
-                for (int c = 0; c < 6; ++c) k[c] += pj[c] - pi[c];
+                for (int c = 0; c < 6; ++c) k[c] += w[e] * (pj[c] - pi[c]);
             }
-        }
+        };
+        if (weight) accumulate(weight);
+        else accumulate(UnitWeights{});
         for (int c = 0; c < 3; ++c) {
             qi[c] = d[i] * pi[c] - s * k[3 + c];
             qi[3 + c] = d[i] * pi[3 + c] + s * k[c];

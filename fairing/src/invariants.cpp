@@ -23,21 +23,27 @@ void for_each_face(const HalfEdgeMesh& mesh, const Component& component, Positio
     }
 }
 
-// Volume (eq. 10, pyramids from the reference point o) or area of the component, summed in the
-// fixed blocks of detail::blocked_sum over its faces (the same bits on any number of threads).
-template <class Position>
-double measure(const HalfEdgeMesh& mesh, const Component& component, bool volume,
-               const Vec3& o, Position position, int threads) {
+// N sums over the component's faces, per_face(triangle, sum) adding each face's share, in the
+// fixed blocks of detail::blocked_sum (the same bits on any number of threads).
+template <int N, class PerFace>
+std::array<double, N> sum_over_faces(const HalfEdgeMesh& mesh, const Component& component,
+                                     int threads, PerFace per_face) {
     const std::vector<Triangle>& faces = mesh.faces();
     const int* list = component.faces.data();
     const int count = static_cast<int>(component.faces.size());
-    return detail::blocked_sum<1>(
-        count, detail::threads_for(count, threads), [&](int k, double* sum) {
-            const Triangle& t = faces[list[k]];
-            const Vec3 a = position(t[0]), b = position(t[1]), c = position(t[2]);
-            if (volume) sum[0] += (a - o).dot((b - o).cross(c - o)) / 6.0;
-            else sum[0] += 0.5 * (b - a).cross(c - a).norm();
-        })[0];
+    return detail::blocked_sum<N>(count, detail::threads_for(count, threads),
+                                  [&](int k, double* sum) { per_face(faces[list[k]], sum); });
+}
+
+// Volume (eq. 10, pyramids from the reference point o) or area of the component.
+template <class Position>
+double measure(const HalfEdgeMesh& mesh, const Component& component, bool volume,
+               const Vec3& o, Position position, int threads) {
+    return sum_over_faces<1>(mesh, component, threads, [&](const Triangle& t, double* sum) {
+        const Vec3 a = position(t[0]), b = position(t[1]), c = position(t[2]);
+        if (volume) sum[0] += (a - o).dot((b - o).cross(c - o)) / 6.0;
+        else sum[0] += 0.5 * (b - a).cross(c - a).norm();
+    })[0];
 }
 
 // Centroid of the enclosed solid (volume) or of the surface (area).
@@ -94,28 +100,24 @@ void scale_component(const HalfEdgeMesh& mesh, const Component& component, bool 
 
 // The coefficients c_0..c_3 of the component's volume with every vertex v at
 // x_v + t normal[local[v]] (pyramids from o, eq. 10): det(a + t n_a, b + t n_b, c + t n_c) / 6
-// expanded by multilinearity. Summed as measure() sums.
+// expanded by multilinearity.
 std::array<double, 4> offset_volume_cubic(const HalfEdgeMesh& mesh, const Component& component,
                                           const Vec3& o, const Positions& x,
                                           const std::vector<Vec3>& normal,
                                           const std::vector<int>& local, int threads) {
-    const std::vector<Triangle>& faces = mesh.faces();
-    const int* list = component.faces.data();
-    const int count = static_cast<int>(component.faces.size());
-    std::array<double, 4> c = detail::blocked_sum<4>(
-        count, detail::threads_for(count, threads), [&](int k, double* sum) {
-        const Triangle& t = faces[list[k]];
-        const Vec3 a = detail::row(x, t[0]) - o, b = detail::row(x, t[1]) - o,
-                   d = detail::row(x, t[2]) - o;
-        const Vec3& na = normal[local[t[0]]];
-        const Vec3& nb = normal[local[t[1]]];
-        const Vec3& nd = normal[local[t[2]]];
-        const Vec3 bd = b.cross(d), nbd = nb.cross(d), bnd = b.cross(nd), nbnd = nb.cross(nd);
-        sum[0] += a.dot(bd);
-        sum[1] += na.dot(bd) + a.dot(nbd) + a.dot(bnd);
-        sum[2] += na.dot(nbd) + na.dot(bnd) + a.dot(nbnd);
-        sum[3] += na.dot(nbnd);
-    });
+    std::array<double, 4> c =
+        sum_over_faces<4>(mesh, component, threads, [&](const Triangle& t, double* sum) {
+            const Vec3 a = detail::row(x, t[0]) - o, b = detail::row(x, t[1]) - o,
+                       d = detail::row(x, t[2]) - o;
+            const Vec3& na = normal[local[t[0]]];
+            const Vec3& nb = normal[local[t[1]]];
+            const Vec3& nd = normal[local[t[2]]];
+            const Vec3 bd = b.cross(d), nbd = nb.cross(d), bnd = b.cross(nd), nbnd = nb.cross(nd);
+            sum[0] += a.dot(bd);
+            sum[1] += na.dot(bd) + a.dot(nbd) + a.dot(bnd);
+            sum[2] += na.dot(nbd) + na.dot(bnd) + a.dot(nbnd);
+            sum[3] += na.dot(nbnd);
+        });
     for (double& k : c) k /= 6.0;
     return c;
 }

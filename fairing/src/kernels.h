@@ -50,24 +50,17 @@ inline const double* weights_of(const SparseOperator& op) {
     return op.unit_weights ? nullptr : op.weight.data();
 }
 
-// k_row for an operator whose weights are all 1 (the umbrella's K), without reading them: the
-// same bits, since 1 * d = d exactly.
-inline void k_row_unit(int i, const double* xs, const int* start, const int* column, double& s0,
-                       double& s1, double& s2) {
-    const double xi0 = xs[3 * i], xi1 = xs[3 * i + 1], xi2 = xs[3 * i + 2];
-    s0 = s1 = s2 = 0;
-    for (int k = start[i]; k < start[i + 1]; ++k) {
-        const double* xj = xs + 3 * column[k];
-        s0 += xj[0] - xi0;
-        s1 += xj[1] - xi1;
-        s2 += xj[2] - xi2;
-    }
-}
+// The weights of an operator whose every w_ij is 1, indexed like its weight array: a kernel
+// written for `Weights w` (w[k]) and called with both reads no weight for the umbrella, with the
+// same bits (1 * d = d, folded by the compiler).
+struct UnitWeights {
+    double operator[](int) const { return 1.0; }
+};
 
-// (s0, s1, s2) = (K x)_i = sum_j w_ij (x_j - x_i); weight null: all 1 (weights_of).
-inline void k_row(int i, const double* xs, const int* start, const int* column,
-                  const double* weight, double& s0, double& s1, double& s2) {
-    if (!weight) return k_row_unit(i, xs, start, column, s0, s1, s2);
+// (s0, s1, s2) = (K x)_i = sum_j w_ij (x_j - x_i).
+template <class Weights>
+inline void k_row_with(int i, const double* xs, const int* start, const int* column,
+                       const Weights& weight, double& s0, double& s1, double& s2) {
     const double xi0 = xs[3 * i], xi1 = xs[3 * i + 1], xi2 = xs[3 * i + 2];
     s0 = s1 = s2 = 0;
     for (int k = start[i]; k < start[i + 1]; ++k) {
@@ -77,6 +70,13 @@ inline void k_row(int i, const double* xs, const int* start, const int* column,
         s1 += w * (xj[1] - xi1);
         s2 += w * (xj[2] - xi2);
     }
+}
+
+// k_row_with for K's weights, null when they are all 1 (weights_of).
+inline void k_row(int i, const double* xs, const int* start, const int* column,
+                  const double* weight, double& s0, double& s1, double& s2) {
+    if (weight) k_row_with(i, xs, start, column, weight, s0, s1, s2);
+    else k_row_with(i, xs, start, column, UnitWeights{}, s0, s1, s2);
 }
 
 // Row i of A x = D x + scale (K v)_i into yi, given (s0, s1, s2) = (K v)_i and D_i = di, and on a

@@ -418,18 +418,14 @@ void Multigrid::Impl::row_product(const Level& level, int l, int i, const X& x,
         // x is zero on the fixed rows, so sum_j w_ij (x_j - x_i) is (K_ff x)_i.
         x(i, xi);
         double k[W] = {};
-        if (op.unit_weights) {  // the same bits (SparseOperator::unit_weights)
+        const auto accumulate = [&](const auto& w) {
             for (int e = op.row_start[i]; e < op.row_start[i + 1]; ++e) {
                 x(op.column[e], xj);
-                for (int c = 0; c < W; ++c) k[c] += xj[c] - xi[c];
+                for (int c = 0; c < W; ++c) k[c] += w[e] * (xj[c] - xi[c]);
             }
-        } else {
-            for (int e = op.row_start[i]; e < op.row_start[i + 1]; ++e) {
-                x(op.column[e], xj);
-                const double w = op.weight[e];
-                for (int c = 0; c < W; ++c) k[c] += w * (xj[c] - xi[c]);
-            }
-        }
+        };
+        if (op.unit_weights) accumulate(UnitWeights{});  // SparseOperator::unit_weights
+        else accumulate(op.weight.data());
         const double d = diagonal[i];
         if constexpr (C) {
             for (int c = 0; c < 3; ++c) {
