@@ -264,7 +264,7 @@ for m in meshes:
     targets.append(("g. curvature L² ts=22.5: 10 steps, frozen operator / 1 step, CPU s", m,
                     "%s (%s s / %s s; iterations %s / %s)" % (f(x, 2), f(cpu(ten)), f(cpu(unit)), its(ten), its(unit)),
                     "≤ 3", le(x, 3)))
-    # The one-click defaults: the automatic time step (runs of bench/run_bench.py engine_automatic).
+    # The one-click defaults: the automatic time step (bench/run_bench.py engine(..., "auto")).
     for op in ("umbrella", "scale-dependent", "curvature"):
         auto = next((r for r in R if r["mesh"] == m and r["group"] == "issue12" and r.get("automatic")
                      and r.get("op") == op), None)

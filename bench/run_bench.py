@@ -267,9 +267,12 @@ ISSUE12_DEFAULTS = (("umbrella", 10.0), ("scale-dependent", 2.5), ("curvature", 
 
 
 def engine(m, op, order, ts, steps=1, threads=1, freeze=False, preconditioner="auto"):
+    """ts "auto": the automatic time step (the one-click default; its choice, the estimate's
+    seconds and the default's extra peak are recorded, with automatic=True)."""
+    automatic = ts == "auto"
     out = os.path.join(runs_dir, "%s_tool.ply" % m["name"])
-    args = [tool, "fair", m["noisy"], out, op, str(order), repr(ts), str(steps), "threads=%d" % threads,
-            "preconditioner=" + preconditioner] + (["freeze=1"] if freeze else [])
+    args = [tool, "fair", m["noisy"], out, op, str(order), "auto" if automatic else repr(ts), str(steps),
+            "threads=%d" % threads, "preconditioner=" + preconditioner] + (["freeze=1"] if freeze else [])
     best = None
     for _ in range(REPEAT):
         o, _, wall, rss = run(args, env=dict(os.environ, OMP_NUM_THREADS=str(threads)))
@@ -278,39 +281,21 @@ def engine(m, op, order, ts, steps=1, threads=1, freeze=False, preconditioner="a
         if best is None or j[key] < best[0][key]:
             best = (j, wall, rss)
     j, wall, rss = best
-    name = "engine %s L%s ts=%g%s%s%s" % (op, "²" if order == 2 else "", ts, ", %d steps" % steps if steps > 1 else "",
-                                        ", frozen" if freeze else "", ", %d threads" % threads if threads > 1 else "")
-    return record(m, name, "issue12", None, j["seconds_engine"], wall, rss,
-                  dict(op=op, order=order, time_step=ts, steps=steps, threads=threads, freeze=freeze,
-                       cg_iterations=j["cg_iterations"], inner_iterations=j.get("inner_iterations"),
-                       cpu_seconds=j.get("cpu_seconds"), extra_bytes_per_vertex=j["extra_peak_bytes_per_vertex"]), False)
-
-
-def engine_automatic(m, op):
-    """The one-click default's strength: one L² step with the automatic time step (fastest of
-    REPEAT; one thread), then (by the caller) the same step at the chosen time step without the
-    estimate, and L at equal cutoff. Its extra peak is the default's."""
-    out = os.path.join(runs_dir, "%s_tool.ply" % m["name"])
-    args = [tool, "fair", m["noisy"], out, op, "2", "auto", "1", "threads=1", "preconditioner=auto"]
-    best = None
-    for _ in range(REPEAT):
-        o, _, wall, rss = run(args, env=dict(os.environ, OMP_NUM_THREADS="1"))
-        j = jline(o)
-        if best is None or j["cpu_seconds"] < best[0]["cpu_seconds"]:
-            best = (j, wall, rss)
-    j, wall, rss = best
-    record(m, "engine %s L² automatic (ts=%g)" % (op, j["time_step"]), "issue12", None, j["seconds_engine"], wall,
-           rss, dict(op=op, order=2, automatic=True, time_step=j["time_step"], steps=1, threads=1,
-                     cg_iterations=j["cg_iterations"], cpu_seconds=j.get("cpu_seconds"),
-                     strength_seconds=j.get("strength_seconds"),
-                     extra_bytes_per_vertex=j["extra_peak_bytes_per_vertex"]), False)
-    return j["time_step"]
+    ts_name = "automatic (ts=%g)" % j["time_step"] if automatic else "ts=%g" % ts
+    name = "engine %s L%s %s%s%s%s" % (op, "²" if order == 2 else "", ts_name, ", %d steps" % steps if steps > 1 else "",
+                                     ", frozen" if freeze else "", ", %d threads" % threads if threads > 1 else "")
+    extra = dict(op=op, order=order, time_step=j["time_step"] if automatic else ts, steps=steps, threads=threads,
+                 freeze=freeze, cg_iterations=j["cg_iterations"], inner_iterations=j.get("inner_iterations"),
+                 cpu_seconds=j.get("cpu_seconds"), extra_bytes_per_vertex=j["extra_peak_bytes_per_vertex"])
+    if automatic:
+        extra.update(automatic=True, strength_seconds=j.get("strength_seconds"))
+    return record(m, name, "issue12", None, j["seconds_engine"], wall, rss, extra, False)
 
 
 def issue12(m):
     # The defaults are automatic: the step they choose on this mesh, against L at equal cutoff.
     for op, _ in ISSUE12_DEFAULTS:
-        chosen = engine_automatic(m, op)
+        chosen = engine(m, op, 2, "auto")["time_step"]
         if chosen > 0:
             engine(m, op, 2, chosen)
             engine(m, op, 1, math.sqrt(chosen))
