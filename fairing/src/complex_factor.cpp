@@ -49,6 +49,122 @@ inline void k_row_stride6(int i, const double* vs, const int* start, const int* 
     else accumulate(UnitWeights{});
 }
 
+static_assert(kSweepBlock % kSumBlock == 0, "a sweep block holds whole sum blocks");
+
+// Calls fn(i, begin, end, a) for the rows of every sweep block [begin, end) of `block` rows (a
+// multiple of kSumBlock, or all rows) in increasing order, the blocks split over `threads` threads; a collects row i's share of N sums (fresh zeros per
+// sum block), combined in block order as blocked_reduce does. (Sweeping two or four blocks on
+// one thread a row of each in turn, to overlap the chains of rows that depend on the row before,
+// was slower: 1.2 M-face bunny, curvature L^2 22.5, 3.53 s with one, 3.68 s with two, 4.05 s
+// with four.)
+template <int N, class RowFn, class Combine>
+std::array<double, N> forward_sweep(int n, int block, int threads, RowFn fn, Combine combine) {
+    const int sweeps = (n + block - 1) / block;
+    std::vector<std::array<double, N>> partial(static_cast<std::size_t>((n + kSumBlock - 1) /
+                                                                        kSumBlock));
+    (void)threads;
+    FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1))
+    for (int g = 0; g < sweeps; ++g) {
+        const int begin = g * block, end = std::min(n, begin + block);
+        for (int b = begin; b < end; b += kSumBlock) {
+            std::array<double, N> a{};
+            for (int i = b; i < std::min(end, b + kSumBlock); ++i) fn(i, begin, end, a.data());
+            partial[static_cast<std::size_t>(b / kSumBlock)] = a;
+        }
+    }
+    std::array<double, N> total{};
+    for (const auto& part : partial) combine(total, part);
+    return total;
+}
+
+// Calls fn(i, begin, end) for the rows of every sweep block in decreasing order.
+template <class RowFn>
+void backward_sweep(int n, int block, int threads, RowFn fn) {
+    const int sweeps = (n + block - 1) / block;
+    (void)threads;
+    FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1))
+    for (int g = 0; g < sweeps; ++g) {
+        const int begin = g * block, end = std::min(n, begin + block);
+        for (int i = end - 1; i >= begin; --i) fn(i, begin, end);
+    }
+}
+
+// A row of K sorted by column (assemble) in four runs, for the sweep block [begin, end) that
+// holds row i: [first, in_block) before the block, [in_block, diagonal) inside it before i,
+// [diagonal, after) inside it after i, [after, last) after the block.
+struct RowRuns {
+    int first, in_block, diagonal, after, last;
+};
+inline RowRuns row_runs(const int* start, const int* column, int i, int begin, int end) {
+    RowRuns r{start[i], start[i], start[i], start[i + 1], start[i + 1]};
+    while (r.in_block < r.last && column[r.in_block] < begin) ++r.in_block;
+    r.diagonal = r.in_block;
+    while (r.diagonal < r.last && column[r.diagonal] < i) ++r.diagonal;
+    while (r.after > r.diagonal && column[r.after - 1] >= end) --r.after;
+    return r;
+}
+
+// sum += sum_{e in [from, to)} w_e v_{column[e]} (complex, three columns, stride 6).
+template <class Weights>
+inline void add_run(const double* vs, const int* column, const Weights& w, int from, int to,
+                    double sum[6]) {
+    for (int e = from; e < to; ++e) {
+        const double* vj = vs + 6 * column[e];
+        for (int c = 0; c < 6; ++c) sum[c] += w[e] * vj[c];
+    }
+}
+
+// Calls fn(w) with K's weights, or UnitWeights when they are all 1 (weights_of).
+template <class Fn>
+inline void with_weights(const double* weight, Fn fn) {
+    if (weight) fn(weight);
+    else fn(UnitWeights{});
+}
+
+// Gauss-Seidel needs every row of op to list its columns in increasing order (assemble's do)
+// and pays only when most couplings lie inside the sweep blocks (else it is Jacobi at a higher
+// price per iteration): on a 40,962-vertex icosphere numbered level by level, blocks of 8,192
+// rows took 30 / 74 / 68 iterations against complex Jacobi's 30 / 84 / 77 (umbrella /
+// scale-dependent / curvature), one block 17 / 38 / 34. Meshes of kReorderVertices vertices or
+// more are renumbered in Z-order when their edges are long in index (vertex_order.h); below
+// kParallelRows the sweeps run on one thread and take the whole mesh as one block.
+constexpr double kInBlockCouplings = 0.75;
+
+int sweep_block_rows(int n) { return n < kParallelRows ? std::max(n, 1) : kSweepBlock; }
+
+bool gauss_seidel_applies(const SparseOperator& op) {
+    const int block = sweep_block_rows(op.size());
+    long long inside = 0;
+    for (int i = 0; i < op.size(); ++i) {
+        const int begin = i / block * block;
+        for (int e = op.row_start[i]; e < op.row_start[i + 1]; ++e) {
+            if (e > op.row_start[i] && !(op.column[e - 1] < op.column[e])) return false;
+            inside += op.column[e] >= begin && op.column[e] < begin + block;
+        }
+    }
+    return inside >= kInBlockCouplings * static_cast<double>(op.column.size());
+}
+
+// Norm of r^ (|r^_i|^2 = |D_i| |r~_i|^2) and r^T r^ = sum D_i r~_i^2 for one row into a[0..8].
+inline void transformed_sums(Cx d, const double* ri, bool l2, double* a) {
+    const double abs_d = std::sqrt(d.re * d.re + d.im * d.im);
+    for (int c = 0; c < 3; ++c) {
+        const Cx rc{ri[c], ri[3 + c]};
+        const double m2 = abs_d * (rc.re * rc.re + rc.im * rc.im);
+        a[c] = l2 ? a[c] + m2 : std::max(a[c], std::sqrt(m2));
+        const Cx rr = mul(d, mul(rc, rc));
+        a[3 + c] += rr.re;
+        a[6 + c] += rr.im;
+    }
+}
+
+std::array<double, 9> combine_norms_and_products(bool l2, std::array<double, 9>& total,
+                                                 const std::array<double, 9>& part) {
+    for (int c = 0; c < 3; ++c) total[c] = l2 ? total[c] + part[c] : std::max(total[c], part[c]);
+    for (int k = 3; k < 9; ++k) total[k] += part[k];
+    return total;
+}
+
 }  // namespace
 
 bool complex_factor_applies(const LinearSystem& system) {
@@ -59,15 +175,23 @@ bool complex_factor_applies(const LinearSystem& system) {
     return true;
 }
 
-ComplexFactorSolver::ComplexFactorSolver(const LinearSystem& system, Multigrid* preconditioner)
-    : system_(system), s_(std::sqrt(system.lambda_dt)), preconditioner_(preconditioner) {
+ComplexFactorSolver::ComplexFactorSolver(const LinearSystem& system, Multigrid* preconditioner,
+                                         bool gauss_seidel)
+    : system_(system),
+      s_(std::sqrt(system.lambda_dt)),
+      gauss_seidel_(!preconditioner && gauss_seidel && gauss_seidel_applies(*system.op)),
+      block_(sweep_block_rows(system.op->size())),
+      preconditioner_(preconditioner) {
     const SparseOperator& op = *system.op;
     const int n = op.size();
     r_.resize(n, 6);
     p_.resize(n, 6);
     q_.resize(n, 6);
-    if (preconditioner_) {
+    if (preconditioner_ || gauss_seidel_) {
         u_.resize(n, 6);
+        if (gauss_seidel_) {
+            imaginary_ = imaginary_diagonal();
+        }
         return;
     }
     inverse_.assign(2 * static_cast<std::size_t>(n), 0.0);
@@ -125,12 +249,18 @@ std::array<double, 3> ComplexFactorSolver::l2_residual_norms(ResidualNorm norm) 
     const int n = op.size();
     const char* f = system_.free.data();
     const double* d = system_.diagonal.data();
-    const double* rs = r_.data();
+    const double* rs = r_.data();  // Re r_c in columns 0..2
     double* vs = q_.data();  // free: q is rewritten by the next product
-    // v = M^-1 Im r_c, in q's first three columns (stride 6); zero on the fixed rows.
-    for_each_row(n, op.threads, [=](int i) {
-        for (int c = 0; c < 3; ++c) vs[6 * i + c] = f[i] ? rs[6 * i + 3 + c] / d[i] : 0.0;
-    });
+    // v = M^-1 Im r_c, in q's first three columns (stride 6); zero on the fixed rows. Gauss-
+    // Seidel: r_c itself is not kept; v and Re r_c (in q's last three columns) come from r~.
+    if (gauss_seidel_) {
+        sweep_residual();
+        rs = vs + 3;
+    } else {
+        for_each_row(n, op.threads, [=](int i) {
+            for (int c = 0; c < 3; ++c) vs[6 * i + c] = f[i] ? rs[6 * i + 3 + c] / d[i] : 0.0;
+        });
+    }
     const int* start = op.row_start.data();
     const int* column = op.column.data();
     const double* weight = weights_of(op);
@@ -153,6 +283,211 @@ std::array<double, 3> ComplexFactorSolver::l2_residual_norms(ResidualNorm norm) 
         });
     if (!l2) return sums;
     return {std::sqrt(sums[0]), std::sqrt(sums[1]), std::sqrt(sums[2])};
+}
+
+std::vector<double> ComplexFactorSolver::imaginary_diagonal() const {
+    const SparseOperator& op = *system_.op;
+    std::vector<double> imaginary(static_cast<std::size_t>(op.size()), 0.0);
+    for_each_row(op.size(), op.threads, [&](int i) {
+        if (system_.free[i]) imaginary[i] = s_ * op.diagonal(i);
+    });
+    return imaginary;
+}
+
+std::array<double, 9> ComplexFactorSolver::sweep_start(ResidualNorm norm) {
+    const SparseOperator& op = *system_.op;
+    const char* f = system_.free.data();
+    const double* m = system_.diagonal.data();
+    const double* im = imaginary_.data();
+    const int* start = op.row_start.data();
+    const int* column = op.column.data();
+    const double* weight = weights_of(op);
+    const double s = s_;
+    double* rs = r_.data();
+    double* ps = p_.data();
+    const bool l2 = norm == ResidualNorm::L2;
+    // r~_i = (g_i - i s sum_{j<i in the block} w_ij r~_j) / D_i, in place: the rows before i
+    // already hold r~.
+    return forward_sweep<9>(
+        op.size(), block_, op.threads,
+        [=](int i, int begin, int end, double* a) {
+            double* ri = rs + 6 * i;
+            double* pi = ps + 6 * i;
+            if (!f[i]) {
+                for (int c = 0; c < 6; ++c) ri[c] = pi[c] = 0;
+                return;
+            }
+            double lower[6] = {0, 0, 0, 0, 0, 0};
+            const RowRuns runs = row_runs(start, column, i, begin, end);
+            with_weights(weight, [&](const auto& w) {
+                add_run(rs, column, w, runs.in_block, runs.diagonal, lower);
+            });
+            const Cx d{m[i], im[i]};
+            const Cx inv = div({1, 0}, d);
+            for (int c = 0; c < 3; ++c) {
+                const Cx t = mul(inv, {ri[c] + s * lower[3 + c], ri[3 + c] - s * lower[c]});
+                ri[c] = pi[c] = t.re;
+                ri[3 + c] = pi[3 + c] = t.im;
+            }
+            transformed_sums(d, ri, l2, a);
+        },
+        [l2](std::array<double, 9>& total, const std::array<double, 9>& part) {
+            combine_norms_and_products(l2, total, part);
+        });
+}
+
+std::array<double, 6> ComplexFactorSolver::sweep_product(const double* beta) {
+    const SparseOperator& op = *system_.op;
+    const int n = op.size();
+    const char* f = system_.free.data();
+    const double* m = system_.diagonal.data();
+    const double* im = imaginary_.data();
+    const int* start = op.row_start.data();
+    const int* column = op.column.data();
+    const double* weight = weights_of(op);
+    const double s = s_;
+    const double* rs = r_.data();
+    double* ps = p_.data();
+    double* us = u_.data();
+    double* ys = q_.data();
+    // Backward: p~_i = r~_i + beta p~_i, then u_i = p~_i - i s (sum_{j>i in the block} w_ij u_j)
+    // / D_i, i.e. (D + L^T) u = D p~.
+    backward_sweep(n, block_, op.threads, [=](int i, int begin, int end) {
+        double* ui = us + 6 * i;
+        if (!f[i]) {
+            for (int c = 0; c < 6; ++c) ui[c] = 0;
+            return;
+        }
+        double* pi = ps + 6 * i;
+        if (beta) {
+            const double* ri = rs + 6 * i;
+            for (int c = 0; c < 3; ++c) {
+                if (std::isnan(beta[2 * c])) continue;  // column done: p stays
+                const Cx bp = mul({beta[2 * c], beta[2 * c + 1]}, {pi[c], pi[3 + c]});
+                pi[c] = ri[c] + bp.re;
+                pi[3 + c] = ri[3 + c] + bp.im;
+            }
+        }
+        double upper[6] = {0, 0, 0, 0, 0, 0};
+        const RowRuns runs = row_runs(start, column, i, begin, end);
+        with_weights(weight, [&](const auto& w) {
+            add_run(us, column, w, runs.diagonal, runs.after, upper);
+        });
+        const Cx inv = div({1, 0}, {m[i], im[i]});
+        for (int c = 0; c < 3; ++c) {
+            // i s U / D_i with U = upper (re, im): i s U = (-s U.im, s U.re).
+            const Cx t = mul(inv, {-s * upper[3 + c], s * upper[c]});
+            ui[c] = pi[c] - t.re;
+            ui[3 + c] = pi[3 + c] - t.im;
+        }
+    });
+    // Forward: (D + L) y = D p~ - D u + R u, R the couplings between blocks, so
+    // u + y = p~ + i s (sum_{j outside} w_ij u_j - sum_{j<i in the block} w_ij y_j) / D_i;
+    // p^T A^ p^ = sum D_i p~_i (u_i + y_i).
+    return forward_sweep<6>(
+        n, block_, op.threads,
+        [=](int i, int begin, int end, double* a) {
+            double* yi = ys + 6 * i;
+            if (!f[i]) {
+                for (int c = 0; c < 6; ++c) yi[c] = 0;
+                return;
+            }
+            // outside - lower in one pass: u_j with +w_ij outside the block, y_j with -w_ij
+            // before i inside it.
+            double outside[6] = {0, 0, 0, 0, 0, 0}, lower[6] = {0, 0, 0, 0, 0, 0};
+            const RowRuns runs = row_runs(start, column, i, begin, end);
+            with_weights(weight, [&](const auto& w) {
+                add_run(us, column, w, runs.first, runs.in_block, outside);
+                add_run(us, column, w, runs.after, runs.last, outside);
+                add_run(ys, column, w, runs.in_block, runs.diagonal, lower);
+            });
+            double coupled[6];
+            for (int c = 0; c < 6; ++c) coupled[c] = outside[c] - lower[c];
+            const Cx d{m[i], im[i]};
+            const Cx inv = div({1, 0}, d);
+            const double* pi = ps + 6 * i;
+            const double* ui = us + 6 * i;
+            for (int c = 0; c < 3; ++c) {
+                const double re = coupled[c], imag = coupled[3 + c];
+                const Cx t = mul(inv, {-s * imag, s * re});
+                const Cx q{pi[c] + t.re, pi[3 + c] + t.im};  // u + y
+                yi[c] = q.re - ui[c];
+                yi[3 + c] = q.im - ui[3 + c];
+                const Cx dpq = mul(d, mul({pi[c], pi[3 + c]}, q));
+                a[c] += dpq.re;
+                a[3 + c] += dpq.im;
+            }
+        },
+        [](std::array<double, 6>& total, const std::array<double, 6>& part) {
+            for (int k = 0; k < 6; ++k) total[k] += part[k];
+        });
+}
+
+std::array<double, 9> ComplexFactorSolver::sweep_update(const double* alpha, ResidualNorm norm,
+                                                        Positions& x) {
+    const int n = system_.op->size();
+    const char* f = system_.free.data();
+    const double* m = system_.diagonal.data();
+    const double* im = imaginary_.data();
+    double* xs = x.data();
+    double* rs = r_.data();
+    const double* us = u_.data();
+    const double* ys = q_.data();
+    const bool l2 = norm == ResidualNorm::L2;
+    return blocked_reduce<9>(
+        n, system_.op->threads,
+        [=](int i, double* a) {
+            if (!f[i]) return;
+            double* ri = rs + 6 * i;
+            const double* ui = us + 6 * i;
+            const double* yi = ys + 6 * i;
+            for (int c = 0; c < 3; ++c) {
+                const Cx ac{alpha[2 * c], alpha[2 * c + 1]};
+                xs[3 * i + c] += mul(ac, {ui[c], ui[3 + c]}).re;
+                const Cx aq = mul(ac, {ui[c] + yi[c], ui[3 + c] + yi[3 + c]});
+                ri[c] -= aq.re;
+                ri[3 + c] -= aq.im;
+            }
+            transformed_sums({m[i], im[i]}, ri, l2, a);
+        },
+        [l2](std::array<double, 9>& total, const std::array<double, 9>& part) {
+            combine_norms_and_products(l2, total, part);
+        });
+}
+
+void ComplexFactorSolver::sweep_residual() {
+    const SparseOperator& op = *system_.op;
+    const char* f = system_.free.data();
+    const double* m = system_.diagonal.data();
+    const double* im = imaginary_.data();
+    const int* start = op.row_start.data();
+    const int* column = op.column.data();
+    const double* weight = weights_of(op);
+    const double s = s_;
+    const double* rs = r_.data();
+    double* vs = q_.data();
+    // r_c = D r~ + i s sum_{j<i in the block} w_ij r~_j.
+    forward_sweep<1>(
+        op.size(), block_, op.threads,
+        [=](int i, int begin, int end, double*) {
+            double* vi = vs + 6 * i;
+            if (!f[i]) {
+                for (int c = 0; c < 6; ++c) vi[c] = 0;
+                return;
+            }
+            double lower[6] = {0, 0, 0, 0, 0, 0};
+            const RowRuns runs = row_runs(start, column, i, begin, end);
+            with_weights(weight, [&](const auto& w) {
+                add_run(rs, column, w, runs.in_block, runs.diagonal, lower);
+            });
+            const double* ri = rs + 6 * i;
+            for (int c = 0; c < 3; ++c) {
+                const Cx rc = mul({m[i], im[i]}, {ri[c], ri[3 + c]});
+                vi[3 + c] = rc.re - s * lower[3 + c];
+                vi[c] = (rc.im + s * lower[c]) / m[i];
+            }
+        },
+        [](std::array<double, 1>&, const std::array<double, 1>&) {});
 }
 
 std::array<double, 6> ComplexFactorSolver::precondition(bool first) {
@@ -276,8 +611,10 @@ std::array<double, 3> ComplexFactorSolver::set_residual(const Positions& b, cons
             for (int c = 0; c < 3; ++c)
                 total[c] = l2 ? total[c] + part[c] : std::max(total[c], part[c]);
         });
-    if (!l2) return sums;
-    return {std::sqrt(sums[0]), std::sqrt(sums[1]), std::sqrt(sums[2])};
+    start_norms_ = l2 ? std::array<double, 3>{std::sqrt(sums[0]), std::sqrt(sums[1]),
+                                              std::sqrt(sums[2])}
+                      : sums;
+    return start_norms_;
 }
 
 int ComplexFactorSolver::correct(Positions& x, const std::array<double, 3>& goal,
@@ -289,13 +626,27 @@ int ComplexFactorSolver::correct(Positions& x, const std::array<double, 3>& goal
                    ? std::array<double, 3>{std::sqrt(sums[0]), std::sqrt(sums[1]), std::sqrt(sums[2])}
                    : std::array<double, 3>{sums[0], sums[1], sums[2]};
     };
-    // r = g (set by set_residual), p = J^-1 r (zero on the fixed rows).
-    for_each_row(system_.op->size(), system_.op->threads, [&](int i) {
-        if (!f[i])
-            for (int c = 0; c < 6; ++c) p_(i, c) = 0;
-    });
-    std::array<double, 9> sums = update(nullptr, true, norm, nullptr);
+    // Gauss-Seidel tracks the transformed residual r^ = E^-1 r_c; its norms are reported and
+    // compared scaled by what the two were at the start (g's norms over r^'s), an estimate
+    // that the check on the L^2 residual below corrects.
+    std::array<double, 3> scale{1, 1, 1};
+    std::array<double, 9> sums;
+    if (gauss_seidel_) {
+        sums = sweep_start(norm);
+    } else {
+        // r = g (set by set_residual), p = J^-1 r (zero on the fixed rows).
+        for_each_row(system_.op->size(), system_.op->threads, [&](int i) {
+            if (!f[i])
+                for (int c = 0; c < 6; ++c) p_(i, c) = 0;
+        });
+        sums = update(nullptr, true, norm, nullptr);
+    }
     std::array<double, 3> rn = norms(sums);
+    if (gauss_seidel_)
+        for (int c = 0; c < 3; ++c) {
+            if (rn[c] > 0) scale[c] = start_norms_[c] / rn[c];
+            rn[c] *= scale[c];
+        }
     Cx rho[3];
     for (int c = 0; c < 3; ++c) {
         rho[c] = {sums[3 + c], sums[6 + c]};
@@ -306,10 +657,13 @@ int ComplexFactorSolver::correct(Positions& x, const std::array<double, 3>& goal
     // compute, so it is checked only once the complex residual reaches `check`, which then
     // moves down by the factor still missing.
     std::array<double, 3> check = goal;
+    double beta[6] = {NAN, NAN, NAN, NAN, NAN, NAN};
     int done = 0;
     while (any(active) && done < cap) {
+        // Gauss-Seidel folds the new direction (p~ = r~ + beta p~) into the product's first sweep.
+        const std::array<double, 6> pq =
+            gauss_seidel_ ? sweep_product(done > 0 ? beta : nullptr) : product(p_, q_);
         ++done;
-        const std::array<double, 6> pq = product(p_, q_);
         double alpha[6] = {0, 0, 0, 0, 0, 0};
         for (int c = 0; c < 3; ++c)
             if (active[c]) {
@@ -318,8 +672,9 @@ int ComplexFactorSolver::correct(Positions& x, const std::array<double, 3>& goal
                 alpha[2 * c] = a.re;
                 alpha[2 * c + 1] = a.im;
             }
-        sums = update(alpha, false, norm, &x);
+        sums = gauss_seidel_ ? sweep_update(alpha, norm, x) : update(alpha, false, norm, &x);
         rn = norms(sums);
+        for (int c = 0; c < 3; ++c) rn[c] *= scale[c];
         bool test = false;
         for (int c = 0; c < 3; ++c) {
             check_finite({rn[c], 0}, done);
@@ -335,8 +690,8 @@ int ComplexFactorSolver::correct(Positions& x, const std::array<double, 3>& goal
         }
         if (after) after(rn);
         if (!any(active)) break;
-        double beta[6] = {NAN, NAN, NAN, NAN, NAN, NAN};
         for (int c = 0; c < 3; ++c) {
+            beta[2 * c] = beta[2 * c + 1] = NAN;
             if (!active[c]) continue;
             const Cx rho_new{sums[3 + c], sums[6 + c]};
             const Cx b = div(rho_new, rho[c]);
@@ -345,7 +700,7 @@ int ComplexFactorSolver::correct(Positions& x, const std::array<double, 3>& goal
             beta[2 * c + 1] = b.im;
             rho[c] = rho_new;
         }
-        next_direction(beta);
+        if (!gauss_seidel_) next_direction(beta);
     }
     return done;
 }

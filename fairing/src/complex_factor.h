@@ -22,6 +22,16 @@
 // unconjugated bilinear form x^T y, valid for complex symmetric matrices) with the complex
 // Jacobi preconditioner.
 //
+// Preconditioners: the multigrid V-cycle (multigrid.h) when given, else symmetric Gauss-Seidel
+// by blocks, P = (D + L) D^-1 (D + L^T) with D the complex diagonal and L the strictly lower
+// couplings inside each block of kSweepBlock rows (so the result does not depend on the number
+// of threads; couplings between blocks are left to the Krylov method). It runs in Eisenstat's
+// form (Eisenstat 1981, "Efficient implementation of a class of preconditioned conjugate
+// gradient methods"): COCG on E^-1 A E^-T with E = (D + L) D^-1/2, whose product costs one
+// backward and one forward sweep, together one pass over the matrix like a product with A, so
+// an iteration costs about what a Jacobi iteration does and needs about half as many (measured:
+// bench/results/issue12/preconditioners.md, "Symmetric Gauss-Seidel").
+//
 // The complex residual does not bound the L^2 residual tightly (per mode the L^2 residual is up
 // to sqrt(1 + s^2 mu^2) times larger), so the iteration stops on the L^2 residual itself,
 // Re r_c + s K M^-1 Im r_c, and solve() confirms it on b - A x, correcting again if needed. The
@@ -38,15 +48,26 @@ namespace detail {
 
 class Multigrid;
 
+// Rows per block of the Gauss-Seidel sweeps from kParallelRows rows on (below, one block): each
+// block is swept on one thread in row order, whatever the number of threads. A multiple of
+// kSumBlock (kernels.h), so that a sweep's sums group rows as blocked_sum does. Measured on the
+// 1.2 M-face bunny (curvature L^2 22.5, Z-order): 59 iterations with 4 to 16 blocks, 57 with 2,
+// 50 with one block, 61 with 64; blocks of 8,192 rows (74) took 60 and split evenly over threads.
+constexpr int kSweepBlock = 2 * 4096;
+
 // True when the L^2 system factors as above: order 2 and D = M on every free row.
 bool complex_factor_applies(const LinearSystem& system);
 
 class ComplexFactorSolver {
 public:
-    // Preconditioned by B (width 6, complex symmetric: multigrid.h) when given, else by complex
-    // Jacobi; B must outlive the solver. B costs one more complex vector and spares Jacobi's
-    // inverse diagonal (the two are never held together).
-    explicit ComplexFactorSolver(const LinearSystem& system, Multigrid* preconditioner = nullptr);
+    // Preconditioned by B (width 6, complex symmetric: multigrid.h) when given, else by block
+    // symmetric Gauss-Seidel (or complex Jacobi when gauss_seidel is false); B must outlive the
+    // solver. B and Gauss-Seidel cost one more complex vector than Jacobi.
+    ComplexFactorSolver(const LinearSystem& system, Multigrid* preconditioner,
+                        bool gauss_seidel = true);
+
+    // Whether it sweeps (Gauss-Seidel asked for and applicable: complex_factor.cpp).
+    bool gauss_seidel() const { return gauss_seidel_; }
 
     // g = b - A x, the residual of the real L^2 system on the free rows (zero on the fixed
     // ones), kept as the complex solve's right-hand side; returns its norms per column.
@@ -78,12 +99,32 @@ private:
     // Norms of the L^2 residual g - A (x + Re z) per column, from r_c alone (uses q as scratch).
     std::array<double, 3> l2_residual_norms(ResidualNorm norm);
 
+    // Gauss-Seidel (Eisenstat's form), in the variables v~ = D^-1/2 v^ of the transformed
+    // system: r = r~, p = p~, u = E^-T p^, q = the forward sweep's y, with A^ p^ = D^1/2 (u + y).
+    // r~ = (D + L)^-1 r in place (r = g on entry), p~ = r~; returns the norms of r^ per column
+    // in [0..2] and r^T r^ (re, im per column) in [3..8].
+    std::array<double, 9> sweep_start(ResidualNorm norm);
+    // u and y for A^ p^, after p~ = r~ + beta p~ where beta is given (not NaN); returns p^T A^ p^
+    // (re, im per column).
+    std::array<double, 6> sweep_product(const double* beta);
+    // x += Re(alpha u), r~ -= alpha (u + y); returns what sweep_start does.
+    std::array<double, 9> sweep_update(const double* alpha, ResidualNorm norm, Positions& x);
+    // The complex residual E r^ = (D + L) r~: real part in q's columns 3..5, imaginary part
+    // divided by M in its columns 0..2 (what l2_residual_norms needs).
+    void sweep_residual();
+    // s K_ii per row (D_i = M_i + i s K_ii), 0 on fixed rows.
+    std::vector<double> imaginary_diagonal() const;
+
     const LinearSystem& system_;
     double s_ = 0;
-    std::vector<double> inverse_;  // 1 / (M_i + i s K_ii): re, im per row; 0 on fixed rows
+    std::vector<double> inverse_;  // Jacobi: 1 / (M_i + i s K_ii): re, im per row; 0 on fixed rows
+    std::vector<double> imaginary_;  // Gauss-Seidel: s K_ii (imaginary_diagonal)
+    bool gauss_seidel_ = false;
+    int block_ = 0;  // rows per sweep block
+    std::array<double, 3> start_norms_{0, 0, 0};  // of g, from set_residual
     Complex6 r_, p_, q_;
     Multigrid* preconditioner_ = nullptr;
-    Complex6 u_;  // B^-1 r with a preconditioner
+    Complex6 u_;  // B^-1 r with a preconditioner; Gauss-Seidel: E^-T p^
 };
 
 }  // namespace detail

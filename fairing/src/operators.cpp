@@ -255,6 +255,25 @@ double vertex_mass(Operator op, bool normalized, bool gather_area, int v, Sparse
     return mass;
 }
 
+// Sorts row v of K by column, after its mass has added its weights up in the order they came:
+// the Gauss-Seidel sweeps (complex_factor.cpp) take a row's couplings before and after the
+// diagonal as two runs, and the products gather their neighbours in increasing order.
+void sort_row(SparseOperator& result, int v) {
+    int* column = result.column.data();
+    double* weight = result.weight.data();
+    for (int k = result.row_start[v] + 1; k < result.row_start[v + 1]; ++k) {
+        const int j = column[k];
+        const double w = weight[k];
+        int l = k;
+        for (; l > result.row_start[v] && column[l - 1] > j; --l) {
+            column[l] = column[l - 1];
+            weight[l] = weight[l - 1];
+        }
+        column[l] = j;
+        weight[l] = w;
+    }
+}
+
 // Drops the edges of massless vertices so that K stays symmetric and the system stays positive
 // definite (their neighbours then see them as missing neighbours). Rare: serial.
 void drop_massless(SparseOperator& result) {
@@ -367,6 +386,7 @@ SparseOperator assemble(Operator op, const HalfEdgeMesh& mesh, const Positions& 
                 ++massless;
             }
             result.mass[v] = mass;
+            sort_row(result, v);
         }
     }
     r.zero_area_faces = static_cast<int>(zero_area);

@@ -522,13 +522,30 @@ std::array<double, 2> stiffness(const LinearSystem& system) {
 // V-cycle now wins the bunny's curvature and scale-dependent L^2 defaults by 20-22 % and still
 // loses the torus' by 23-60 %, at about the same stiffness; the thresholds stand
 // (bench/results/issue12/preconditioners.md, last section).
+//
+// Since then the complex solve's Jacobi gave way to block symmetric Gauss-Seidel
+// (complex_factor.h) from stiffness kGaussSeidelFrom on, which halves its iterations at an iteration ~1.2x the
+// price, and the V-cycle's threshold moved up. Measured in one run (1 thread, CPU seconds of
+// fair(), bench/results/issue12/preconditioners.md, "Symmetric Gauss-Seidel"), complex Jacobi /
+// Gauss-Seidel / V-cycle, stiffness in brackets:
+//   bunny: umbrella 10 [3.2] 1.34 / 1.42 / 2.28 s; scale-dependent 2.5 [5.0] 3.86 / 3.28 / 3.09;
+//     curvature 22.5 [5.6] 5.22 / 3.80 / 4.43; curvature 90 [11.2] 6.95 / 4.90 / 4.91; umbrella
+//     197 [14.2] 2.43 / 2.27 / 3.02; scale-dependent 22.1 [14.9] 7.21 / 5.61 / 4.13; curvature
+//     202 [16.8] 8.81 / 6.35 / 5.59; curvature 360 [22.4] 9.70 / 7.18 / 5.17.
+//   torus: umbrella 10 [3.2] 0.86 / 0.90 / 1.68; scale-dependent 2.5 [3.9] 1.27 / 1.13 / 1.98;
+//     curvature 22.5 [6.2] 2.33 / 1.93 / 2.82; curvature 90 [12.4] 2.91 / 2.45 / 3.57; curvature
+//     360 [24.8] 4.14 / 3.02 / 5.34; the one-click steps [162-339] 8.2-13.9 / 6.9-8.4 / 3.1-6.1.
+// The scan wants the V-cycle from about 15, the torus from well above 25 (it is harder for the
+// complex cycle, below); 16 loses the scan's scale-dependent 22.1 (1.36x) and the torus'
+// curvature 360 (1.77x) and takes the better path everywhere else measured.
 constexpr double kMultigridFirstOrder = 20;
-constexpr double kMultigridComplex = 8;
+constexpr double kMultigridComplex = 16;
 constexpr double kMultigridRows = 50000;
+constexpr double kGaussSeidelFrom = 3.5;
 
 // A later step of the same run (settings.previous: an L^2 step re-assembled on the smoothed
-// mesh) takes the V-cycle when the previous one did, or when complex Jacobi needed more than
-// this many iterations there: about what a V-cycle solve costs in Jacobi iterations (set-up
+// mesh) takes the V-cycle when the previous one did, or when complex Jacobi (or Gauss-Seidel,
+// below) needed more than this many iterations there: about what a V-cycle solve costs in Jacobi iterations (set-up
 // ~13, then ~35 cycles of ~3.2 each at the one-click strengths). The stiffness does not predict
 // the later steps: on the smoothed mesh it rises while Jacobi's iterations rise on a scan and
 // fall on a smooth shape. Measured (1 thread, curvature L^2 x4, process seconds of fair();
@@ -538,6 +555,11 @@ constexpr double kMultigridRows = 50000;
 //     V-cycle from 25 on, 31.0 s against 24.7 s); 10: 92, 168, 173, 190 (25.1 s) / 29-44 (21.0 s)
 //   torus (1 M faces), 22.5: 72, 62, 50, 51 (7.6 s) / 30, 26, 20, 20 (10.4 s), stiffness 5.5
 //     then 6.6; 50: 84, 69, 60, 58 (8.6 s) / 37, 31, 26, 25 (12.2 s)
+// With Gauss-Seidel (1 thread, curvature L^2 x4, Gauss-Seidel throughout /
+// V-cycle throughout): bunny 22.5: 60, 120, 121, 128 (22.2 s) / 27, 45, 43, 42 (23.0 s); 50:
+// 76, 135, 133, 149 (25.9 s) / 30-43 (22.1 s); torus 22.5: 42, 32, 27, 25 (6.0 s) / 25-18
+// (9.6 s); 50: 47-32 (6.9 s) / 31-20 (11.1 s). A Gauss-Seidel iteration costs ~1.2 Jacobi
+// iterations and a V-cycle step about 110 of them on the bunny, so the same threshold serves.
 constexpr int kJacobiWorthMultigrid = 100;
 
 // Whether the multigrid preconditioner is used: asked for, or chosen by Automatic.
@@ -572,7 +594,11 @@ SolveStats solve_complex(const LinearSystem& system, Positions& x, const Positio
                                                     detail::Multigrid::Kind::Complex);
         stats.multigrid = true;
     }
-    detail::ComplexFactorSolver solver(system, cycle.get());
+    // Below kGaussSeidelFrom complex Jacobi's few iterations cost less than Gauss-Seidel's
+    // fewer (umbrella 10 on the 1.2 M-face bunny: 20 against 18).
+    detail::ComplexFactorSolver solver(system, cycle.get(),
+                                       stiffness(system)[0] >= kGaussSeidelFrom);
+    stats.gauss_seidel = solver.gauss_seidel();
     Progress progress(settings, goal);
     std::array<bool, 3> active{false, false, false};
     Column3 rn{0, 0, 0};
