@@ -78,10 +78,12 @@ enum class ResidualNorm { L2, LInfinity };  // Appendix A.2.
 
 // How the conjugate gradients are preconditioned (see solver.h).
 enum class Preconditioner {
-    Automatic,  // L^2 without soft weights: one complex solve (solver.h); else Factored for
-                // L^2 steps strong enough to profit, Jacobi otherwise; Multigrid in place of
-                // Jacobi for strong steps on meshes of 50,000 vertices or more, and for the rest
-                // of a complex solve Jacobi has not finished in half of max_iterations
+    Automatic,  // L^2 without soft weights: one complex solve (solver.h), preconditioned by
+                // complex Jacobi, block symmetric Gauss-Seidel or the V-cycle as the step's
+                // stiffness grows; else Factored for L^2 steps strong enough to profit, Jacobi
+                // otherwise; Multigrid in place of Jacobi for strong steps on meshes of 50,000
+                // vertices or more, and for the rest of a complex solve not finished in half of
+                // max_iterations
     Jacobi,     // the diagonal of the system: cheap, iterations grow as sqrt(lambda_dt)
     Factored,   // L^2 only: two first-order solves per iteration, iterations grow as lambda_dt^1/4
     Multigrid,  // smoothed-aggregation multigrid V-cycle (src/multigrid.h): first order, and L^2
