@@ -114,6 +114,18 @@ inline void add_run(const double* vs, const int* column, const Weights& w, int f
     }
 }
 
+// The same from the run's end down: the backward sweep adds its newest neighbour (the lowest
+// column above i, often i + 1) last, so that the chain of rows waits on one addition per row
+// instead of the whole run.
+template <class Weights>
+inline void add_run_down(const double* vs, const int* column, const Weights& w, int from, int to,
+                         double sum[6]) {
+    for (int e = to - 1; e >= from; --e) {
+        const double* vj = vs + 6 * column[e];
+        for (int c = 0; c < 6; ++c) sum[c] += w[e] * vj[c];
+    }
+}
+
 // Calls fn(w) with K's weights, or UnitWeights when they are all 1 (weights_of).
 template <class Fn>
 inline void with_weights(const double* weight, Fn fn) {
@@ -371,7 +383,7 @@ std::array<double, 6> ComplexFactorSolver::sweep_product(const double* beta) {
         double upper[6] = {0, 0, 0, 0, 0, 0};
         const RowRuns runs = row_runs(start, column, i, begin, end);
         with_weights(weight, [&](const auto& w) {
-            add_run(us, column, w, runs.diagonal, runs.after, upper);
+            add_run_down(us, column, w, runs.diagonal, runs.after, upper);
         });
         const Cx inv = div({1, 0}, {m[i], im[i]});
         for (int c = 0; c < 3; ++c) {

@@ -524,22 +524,33 @@ std::array<double, 2> stiffness(const LinearSystem& system) {
 // (bench/results/issue12/preconditioners.md, last section).
 //
 // Since then the complex solve's Jacobi gave way to block symmetric Gauss-Seidel
-// (complex_factor.h) from stiffness kGaussSeidelFrom on, which halves its iterations at an iteration ~1.2x the
-// price, and the V-cycle's threshold moved up. Measured in one run (1 thread, CPU seconds of
-// fair(), bench/results/issue12/preconditioners.md, "Symmetric Gauss-Seidel"), complex Jacobi /
+// (complex_factor.h) from stiffness kGaussSeidelFrom on, except for the umbrella, and the
+// V-cycle's threshold moved. Measured in one run each (1 thread, CPU seconds of fair(),
+// bench/results/issue12/preconditioners.md, "Symmetric Gauss-Seidel"), complex Jacobi /
 // Gauss-Seidel / V-cycle, stiffness in brackets:
-//   bunny: umbrella 10 [3.2] 1.34 / 1.42 / 2.28 s; scale-dependent 2.5 [5.0] 3.86 / 3.28 / 3.09;
-//     curvature 22.5 [5.6] 5.22 / 3.80 / 4.43; curvature 90 [11.2] 6.95 / 4.90 / 4.91; umbrella
-//     197 [14.2] 2.43 / 2.27 / 3.02; scale-dependent 22.1 [14.9] 7.21 / 5.61 / 4.13; curvature
-//     202 [16.8] 8.81 / 6.35 / 5.59; curvature 360 [22.4] 9.70 / 7.18 / 5.17.
-//   torus: umbrella 10 [3.2] 0.86 / 0.90 / 1.68; scale-dependent 2.5 [3.9] 1.27 / 1.13 / 1.98;
-//     curvature 22.5 [6.2] 2.33 / 1.93 / 2.82; curvature 90 [12.4] 2.91 / 2.45 / 3.57; curvature
-//     360 [24.8] 4.14 / 3.02 / 5.34; the one-click steps [162-339] 8.2-13.9 / 6.9-8.4 / 3.1-6.1.
-// The scan wants the V-cycle from about 15, the torus from well above 25 (it is harder for the
-// complex cycle, below); 16 loses the scan's scale-dependent 22.1 (1.36x) and the torus'
-// curvature 360 (1.77x) and takes the better path everywhere else measured.
+//   bunny (Loop x2, 603 k vertices): umbrella 10 [3.2] 1.34 / 1.42 / 2.28 s; scale-dependent 2.5
+//     [5.0] 3.86 / 3.28 / 3.09; curvature 22.5 [5.6] 5.22 / 3.80 / 4.43; curvature 90 [11.2]
+//     6.95 / 4.90 / 4.91; umbrella 197 [14.2] 2.43 / 2.27 / 3.02; scale-dependent 22.1 [14.9]
+//     7.21 / 5.61 / 4.13; curvature 202 [16.8] 8.81 / 6.35 / 5.59; curvature 360 [22.4]
+//     9.70 / 7.18 / 5.17.
+//   torus (500 k): umbrella 10 [3.2] 0.86 / 0.90 / 1.68; scale-dependent 2.5 [3.9] 1.27 / 1.13 /
+//     1.98; curvature 22.5 [6.2] 2.33 / 1.93 / 2.82; curvature 90 [12.4] 2.91 / 2.45 / 3.57;
+//     curvature 360 [24.8] 4.14 / 3.02 / 5.34; the one-click steps [162-339] 8.2-13.9 /
+//     6.9-8.4 / 3.1-6.1.
+//   armadillo, bunny00, elephant (Loop, 104-178 k, in cache): Gauss-Seidel within 10 % of
+//     Jacobi, faster on the 178 k elephant; umbrella 197 [14.0] Jacobi 0.29-0.54 s, Gauss-Seidel
+//     20-34 % slower, V-cycle 0.44-0.70; scale-dependent 22 [11.2-15.0] V-cycle 0.91-1.04 s
+//     against Gauss-Seidel 1.09-1.15 from 13.7 on; curvature 201 [13.8-17.2] V-cycle better from
+//     15; curvature 360 [18.5-23] V-cycle better but on the armadillo (0.86 against 0.61 s).
+//   camel, dragon, sphere (13-20 k, one sweep block): Gauss-Seidel halves the iterations
+//     and takes 25-40 % less time from 3.9 on.
+// So the umbrella keeps complex Jacobi (its iterations drop by 10-25 % only) up to the V-cycle
+// at 20; the other operators sweep from 3.5 and take the V-cycle from 14. What is lost against
+// the best column: the elephant's scale-dependent 22 (1.1x), the armadillo's and the torus'
+// curvature 360 (1.4x, 1.8x).
 constexpr double kMultigridFirstOrder = 20;
-constexpr double kMultigridComplex = 16;
+constexpr double kMultigridComplex = 14;
+constexpr double kMultigridComplexUnitWeights = 20;
 constexpr double kMultigridRows = 50000;
 constexpr double kGaussSeidelFrom = 3.5;
 
@@ -571,7 +582,9 @@ bool use_multigrid(const LinearSystem& system, Preconditioner preconditioner,
     if (previous && previous->complex_factor && system.order == 2 && s[1] >= kMultigridRows)
         return previous->multigrid || previous->iterations > kJacobiWorthMultigrid;
     return s[1] >= kMultigridRows &&
-           s[0] >= (system.order == 1 ? kMultigridFirstOrder : kMultigridComplex);
+           s[0] >= (system.order == 1          ? kMultigridFirstOrder
+                    : system.op->unit_weights ? kMultigridComplexUnitWeights
+                                              : kMultigridComplex);
 }
 
 // CG's recursively updated residual drifts from the true one on ill-conditioned systems (the
@@ -594,10 +607,11 @@ SolveStats solve_complex(const LinearSystem& system, Positions& x, const Positio
                                                     detail::Multigrid::Kind::Complex);
         stats.multigrid = true;
     }
-    // Below kGaussSeidelFrom complex Jacobi's few iterations cost less than Gauss-Seidel's
-    // fewer (umbrella 10 on the 1.2 M-face bunny: 20 against 18).
-    detail::ComplexFactorSolver solver(system, cycle.get(),
-                                       stiffness(system)[0] >= kGaussSeidelFrom);
+    // Below kGaussSeidelFrom, and for the umbrella, complex Jacobi's iterations cost less than
+    // Gauss-Seidel's fewer (above).
+    detail::ComplexFactorSolver solver(
+        system, cycle.get(),
+        !system.op->unit_weights && stiffness(system)[0] >= kGaussSeidelFrom);
     stats.gauss_seidel = solver.gauss_seidel();
     Progress progress(settings, goal);
     std::array<bool, 3> active{false, false, false};
