@@ -3,6 +3,7 @@
 #include "complex_factor.h"
 
 #include "kernels.h"
+#include "sweeps.h"
 #include "multigrid.h"
 
 #include <algorithm>
@@ -47,114 +48,6 @@ inline void k_row_stride6(int i, const double* vs, const int* start, const int* 
     };
     if (weight) accumulate(weight);
     else accumulate(UnitWeights{});
-}
-
-static_assert(kSweepBlock % kSumBlock == 0, "a sweep block holds whole sum blocks");
-
-// Calls fn(i, begin, end, a) for the rows of every sweep block [begin, end) of `block` rows (a
-// multiple of kSumBlock, or all rows) in increasing order, the blocks split over `threads` threads; a collects row i's share of N sums (fresh zeros per
-// sum block), combined in block order as blocked_reduce does. (Sweeping two or four blocks on
-// one thread a row of each in turn, to overlap the chains of rows that depend on the row before,
-// was slower: 1.2 M-face bunny, curvature L^2 22.5, 3.53 s with one, 3.68 s with two, 4.05 s
-// with four.)
-template <int N, class RowFn, class Combine>
-std::array<double, N> forward_sweep(int n, int block, int threads, RowFn fn, Combine combine) {
-    const int sweeps = (n + block - 1) / block;
-    std::vector<std::array<double, N>> partial(static_cast<std::size_t>((n + kSumBlock - 1) /
-                                                                        kSumBlock));
-    (void)threads;
-    FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1))
-    for (int g = 0; g < sweeps; ++g) {
-        const int begin = g * block, end = std::min(n, begin + block);
-        for (int b = begin; b < end; b += kSumBlock) {
-            std::array<double, N> a{};
-            for (int i = b; i < std::min(end, b + kSumBlock); ++i) fn(i, begin, end, a.data());
-            partial[static_cast<std::size_t>(b / kSumBlock)] = a;
-        }
-    }
-    std::array<double, N> total{};
-    for (const auto& part : partial) combine(total, part);
-    return total;
-}
-
-// Calls fn(i, begin, end) for the rows of every sweep block in decreasing order.
-template <class RowFn>
-void backward_sweep(int n, int block, int threads, RowFn fn) {
-    const int sweeps = (n + block - 1) / block;
-    (void)threads;
-    FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1))
-    for (int g = 0; g < sweeps; ++g) {
-        const int begin = g * block, end = std::min(n, begin + block);
-        for (int i = end - 1; i >= begin; --i) fn(i, begin, end);
-    }
-}
-
-// A row of K sorted by column (assemble) in four runs, for the sweep block [begin, end) that
-// holds row i: [first, in_block) before the block, [in_block, diagonal) inside it before i,
-// [diagonal, after) inside it after i, [after, last) after the block.
-struct RowRuns {
-    int first, in_block, diagonal, after, last;
-};
-inline RowRuns row_runs(const int* start, const int* column, int i, int begin, int end) {
-    RowRuns r{start[i], start[i], start[i], start[i + 1], start[i + 1]};
-    while (r.in_block < r.last && column[r.in_block] < begin) ++r.in_block;
-    r.diagonal = r.in_block;
-    while (r.diagonal < r.last && column[r.diagonal] < i) ++r.diagonal;
-    while (r.after > r.diagonal && column[r.after - 1] >= end) --r.after;
-    return r;
-}
-
-// sum += sum_{e in [from, to)} w_e v_{column[e]} (complex, three columns, stride 6).
-template <class Weights>
-inline void add_run(const double* vs, const int* column, const Weights& w, int from, int to,
-                    double sum[6]) {
-    for (int e = from; e < to; ++e) {
-        const double* vj = vs + 6 * column[e];
-        for (int c = 0; c < 6; ++c) sum[c] += w[e] * vj[c];
-    }
-}
-
-// The same from the run's end down: the backward sweep adds its newest neighbour (the lowest
-// column above i, often i + 1) last, so that the chain of rows waits on one addition per row
-// instead of the whole run.
-template <class Weights>
-inline void add_run_down(const double* vs, const int* column, const Weights& w, int from, int to,
-                         double sum[6]) {
-    for (int e = to - 1; e >= from; --e) {
-        const double* vj = vs + 6 * column[e];
-        for (int c = 0; c < 6; ++c) sum[c] += w[e] * vj[c];
-    }
-}
-
-// Calls fn(w) with K's weights, or UnitWeights when they are all 1 (weights_of).
-template <class Fn>
-inline void with_weights(const double* weight, Fn fn) {
-    if (weight) fn(weight);
-    else fn(UnitWeights{});
-}
-
-// Gauss-Seidel needs every row of op to list its columns in increasing order (assemble's do)
-// and pays only when most couplings lie inside the sweep blocks (else it is Jacobi at a higher
-// price per iteration): on a 40,962-vertex icosphere numbered level by level, blocks of 8,192
-// rows took 30 / 74 / 68 iterations against complex Jacobi's 30 / 84 / 77 (umbrella /
-// scale-dependent / curvature), one block 17 / 38 / 34. Meshes of kReorderVertices vertices or
-// more are renumbered in Z-order when their edges are long in index (vertex_order.h); below
-// kParallelRows the sweeps run on one thread and take the whole mesh as one block.
-constexpr double kInBlockCouplings = 0.75;
-
-int sweep_block_rows(int n) { return n < kParallelRows ? std::max(n, 1) : kSweepBlock; }
-
-bool gauss_seidel_applies(const SparseOperator& op) {
-    const int block = sweep_block_rows(op.size());
-    long long inside = 0;
-    for (int i = 0; i < op.size(); ++i) {
-        const int begin = i / block * block;
-        for (int e = op.row_start[i]; e < op.row_start[i + 1]; ++e) {
-            if (e > op.row_start[i] && !(op.column[e - 1] < op.column[e])) return false;
-            inside += op.column[e] >= begin && op.column[e] < begin + block;
-        }
-    }
-    return inside >= kInBlockCouplings * static_cast<double>(op.column.size());
 }
 
 // Norm of r^ (|r^_i|^2 = |D_i| |r~_i|^2) and r^T r^ = sum D_i r~_i^2 for one row into a[0..8].
@@ -332,7 +225,7 @@ std::array<double, 9> ComplexFactorSolver::sweep_start(ResidualNorm norm) {
             double lower[6] = {0, 0, 0, 0, 0, 0};
             const RowRuns runs = row_runs(start, column, i, begin, end);
             with_weights(weight, [&](const auto& w) {
-                add_run(rs, column, w, runs.in_block, runs.diagonal, lower);
+                add_run<6>(rs, column, w, runs.in_block, runs.diagonal, lower);
             });
             const Cx d{m[i], im[i]};
             const Cx inv = div({1, 0}, d);
@@ -383,7 +276,7 @@ std::array<double, 6> ComplexFactorSolver::sweep_product(const double* beta) {
         double upper[6] = {0, 0, 0, 0, 0, 0};
         const RowRuns runs = row_runs(start, column, i, begin, end);
         with_weights(weight, [&](const auto& w) {
-            add_run_down(us, column, w, runs.diagonal, runs.after, upper);
+            add_run_down<6>(us, column, w, runs.diagonal, runs.after, upper);
         });
         const Cx inv = div({1, 0}, {m[i], im[i]});
         for (int c = 0; c < 3; ++c) {
@@ -409,9 +302,9 @@ std::array<double, 6> ComplexFactorSolver::sweep_product(const double* beta) {
             double outside[6] = {0, 0, 0, 0, 0, 0}, lower[6] = {0, 0, 0, 0, 0, 0};
             const RowRuns runs = row_runs(start, column, i, begin, end);
             with_weights(weight, [&](const auto& w) {
-                add_run(us, column, w, runs.first, runs.in_block, outside);
-                add_run(us, column, w, runs.after, runs.last, outside);
-                add_run(ys, column, w, runs.in_block, runs.diagonal, lower);
+                add_run<6>(us, column, w, runs.first, runs.in_block, outside);
+                add_run<6>(us, column, w, runs.after, runs.last, outside);
+                add_run<6>(ys, column, w, runs.in_block, runs.diagonal, lower);
             });
             double coupled[6];
             for (int c = 0; c < 6; ++c) coupled[c] = outside[c] - lower[c];
@@ -490,7 +383,7 @@ void ComplexFactorSolver::sweep_residual() {
             double lower[6] = {0, 0, 0, 0, 0, 0};
             const RowRuns runs = row_runs(start, column, i, begin, end);
             with_weights(weight, [&](const auto& w) {
-                add_run(rs, column, w, runs.in_block, runs.diagonal, lower);
+                add_run<6>(rs, column, w, runs.in_block, runs.diagonal, lower);
             });
             const double* ri = rs + 6 * i;
             for (int c = 0; c < 3; ++c) {

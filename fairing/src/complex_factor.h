@@ -19,13 +19,12 @@
 // about as fast as CG on the real segment 1 - s mu, i.e. like the first-order step itself, where
 // the L^2 system (1 + s^2 mu^2) needs the square root of a squared condition number. The
 // method is COCG (conjugate orthogonal CG, van der Vorst and Melissen 1990: CG with the
-// unconjugated bilinear form x^T y, valid for complex symmetric matrices) with the complex
-// Jacobi preconditioner.
+// unconjugated bilinear form x^T y, valid for complex symmetric matrices).
 //
 // Preconditioners: the multigrid V-cycle (multigrid.h) when given, else symmetric Gauss-Seidel
 // by blocks, P = (D + L) D^-1 (D + L^T) with D the complex diagonal and L the strictly lower
-// couplings inside each block of kSweepBlock rows (so the result does not depend on the number
-// of threads; couplings between blocks are left to the Krylov method). It runs in Eisenstat's
+// couplings inside each block of kSweepBlock rows (sweeps.h: so the result does not depend on
+// the number of threads; couplings between blocks are left to the Krylov method). It runs in Eisenstat's
 // form (Eisenstat 1981, "Efficient implementation of a class of preconditioned conjugate
 // gradient methods"): COCG on E^-1 A E^-T with E = (D + L) D^-1/2, whose product costs one
 // backward and one forward sweep, together one pass over the matrix like a product with A, so
@@ -48,12 +47,6 @@ namespace detail {
 
 class Multigrid;
 
-// Rows per block of the Gauss-Seidel sweeps from kParallelRows rows on (below, one block): each
-// block is swept on one thread in row order, whatever the number of threads. A multiple of
-// kSumBlock (kernels.h), so that a sweep's sums group rows as blocked_sum does. Measured on the
-// 1.2 M-face bunny (curvature L^2 22.5, Z-order): 59 iterations with 4 to 16 blocks, 57 with 2,
-// 50 with one block, 61 with 64; blocks of 8,192 rows (74) took 60 and split evenly over threads.
-constexpr int kSweepBlock = 2 * 4096;
 
 // True when the L^2 system factors as above: order 2 and D = M on every free row.
 bool complex_factor_applies(const LinearSystem& system);

@@ -3,6 +3,7 @@
 #include "multigrid.h"
 
 #include "kernels.h"
+#include "sweeps.h"
 
 #include <Eigen/Dense>
 
@@ -84,6 +85,11 @@ struct Multigrid::Impl {
     Eigen::PartialPivLU<Eigen::MatrixXd> lu_real;
     Eigen::PartialPivLU<Eigen::MatrixXcd> lu_complex;
     bool dense = false;  // the coarsest level is solved by LU (else smoothed)
+    // Level 0 smoothed by block Gauss-Seidel (sweeps.h; its inv then undamped) in rows of
+    // gauss_seidel_block, else by damped Jacobi. Asked for by the constructor, kept by build()
+    // where it applies.
+    bool gauss_seidel = true;
+    int gauss_seidel_block = 0;
     double* fine_work = nullptr;  // level 0's residual vector, lent by the caller of apply()
 
     double* work(Level& level, int l) { return l == 0 ? fine_work : level.res.data(); }
@@ -111,6 +117,10 @@ struct Multigrid::Impl {
     void smooth(Level& level, int l, const double* b, double* x);
     template <int W, bool C>
     void cycle(int l, const double* b, double* x, double* dots);
+    template <int W, bool C>
+    void cycle_gauss_seidel(const double* b, double* x, double* dots);
+    template <int W, bool C>
+    void restrict_to(const Level& level, const double* res, Level& next) const;
     template <int W, bool C>
     void solve_coarsest(const Level& level, const double* b, double* x) const;
 };
@@ -349,8 +359,11 @@ void Multigrid::Impl::build() {
         if (free[i]) adiag[i] = diagonal[i] - a * op.diagonal(i);
     double omega = 0;
     Split coarse = coarsen(n, fine_row, adiag, 0.0, levels[0], &omega);
-    // Level 0's smoother: the diagonal of B itself.
+    // Level 0's smoother: the diagonal of B itself, damped for Jacobi.
     const bool complex = kind == Kind::Complex;
+    gauss_seidel = gauss_seidel && gauss_seidel_applies(op);
+    gauss_seidel_block = sweep_block_rows(n);
+    if (gauss_seidel) omega = 1;
     fine.inv.assign(static_cast<std::size_t>(complex ? 2 * n : n), 0.0);
     for (int i = 0; i < n; ++i) {
         if (!(adiag[i] > 0)) continue;
@@ -527,8 +540,150 @@ void Multigrid::Impl::solve_coarsest(const Level& level, const double* b, double
 // corrected x lives in res once the residual is restricted), which saves two passes over the
 // vectors; coarser levels take kCoarseSweeps each way. dots (level 0): the unconjugated
 // products b^T x per column (re; im for width 6), summed in fixed blocks.
+// next.b = R res (R = P^T, by its stored rows).
+template <int W, bool C>
+void Multigrid::Impl::restrict_to(const Level& level, const double* res, Level& next) const {
+    const Csr& r = level.r;
+    double* bc = next.b.data();
+    for_each_row(next.n, next.threads, [&](int c) {
+        double s[W] = {};
+        for (int e = r.start[c]; e < r.start[c + 1]; ++e) {
+            const double* ri = res + W * r.col[e];
+            for (int k = 0; k < W; ++k) s[k] += r.val[e] * ri[k];
+        }
+        for (int k = 0; k < W; ++k) bc[W * c + k] = s[k];
+    });
+}
+
+namespace {
+
+// out = sum_j B_ij v_j for off-diagonal couplings given S = sum_j w_ij v_j: B_ij = -a w_ij
+// (Real) or i a w_ij (Complex).
+template <int W, bool C>
+inline void off_diagonal(double a, const double* S, double* out) {
+    if constexpr (C) {
+        for (int c = 0; c < 3; ++c) {
+            out[c] = -a * S[3 + c];
+            out[3 + c] = a * S[c];
+        }
+    } else {
+        for (int c = 0; c < W; ++c) out[c] = -a * S[c];
+    }
+}
+
+}  // namespace
+
+// The V-cycle with level 0 smoothed by block Gauss-Seidel (sweeps.h): a forward sweep from zero
+// before the coarse correction, a backward one after it, its transpose, so the cycle stays a
+// (complex) symmetric operator. Sweeps read couplings to other blocks from a vector no block
+// writes during the sweep (zero before, the corrected x after), so the result does not depend
+// on the number of threads. As the Jacobi cycle, two passes over K: the forward sweep and the
+// residual it leaves (each over part of every row), then the backward sweep.
+template <int W, bool C>
+void Multigrid::Impl::cycle_gauss_seidel(const double* b, double* x, double* dots) {
+    Level& level = levels[0];
+    Level& next = levels[1];
+    const int n = level.n;
+    const double* inv = level.inv.data();
+    double* res = fine_work;
+    const int* start = op.row_start.data();
+    const int* column = op.column.data();
+    const double* weight = weights_of(op);
+    const char* f = free.data();
+    const double a = this->a;
+    const int block = gauss_seidel_block;
+    // x_i = B_ii^-1 (b_i - sum_{j<i in the block} B_ij x_j); x is zero on fixed rows.
+    forward_sweep<1>(
+        n, block, level.threads,
+        [=](int i, int begin, int end, double*) {
+            double* xi = x + W * i;
+            if (!f[i]) {
+                for (int c = 0; c < W; ++c) xi[c] = 0;
+                return;
+            }
+            double S[W] = {}, g[W];
+            const RowRuns runs = row_runs(start, column, i, begin, end);
+            with_weights(weight, [&](const auto& w) {
+                add_run<W>(x, column, w, runs.in_block, runs.diagonal, S);
+            });
+            off_diagonal<W, C>(a, S, g);
+            for (int c = 0; c < W; ++c) g[c] = b[W * i + c] - g[c];
+            scale<W, C>(inv, i, g, xi);
+        },
+        [](std::array<double, 1>&, const std::array<double, 1>&) {});
+    // res = b - B x: row i's diagonal and lower couplings give b_i, the rest is left.
+    for_each_row(n, level.threads, [=](int i) {
+        double* ri = res + W * i;
+        if (!f[i]) {
+            for (int c = 0; c < W; ++c) ri[c] = 0;
+            return;
+        }
+        const int block_begin = i / block * block;
+        const RowRuns runs =
+            row_runs(start, column, i, block_begin, std::min(n, block_begin + block));
+        double S[W] = {}, g[W];
+        with_weights(weight, [&](const auto& w) {
+            add_run<W>(x, column, w, runs.first, runs.in_block, S);
+            add_run<W>(x, column, w, runs.diagonal, runs.last, S);
+        });
+        off_diagonal<W, C>(a, S, g);
+        for (int c = 0; c < W; ++c) ri[c] = -g[c];
+    });
+    restrict_to<W, C>(level, res, next);
+    cycle<W, C>(1, next.b.data(), next.x.data(), nullptr);
+    // res = x + P x_coarse (the corrected x).
+    const Csr& p = level.p;
+    const double* xc = next.x.data();
+    for_each_row(n, level.threads, [=](int i) {
+        double v[W];
+        for (int k = 0; k < W; ++k) v[k] = x[W * i + k];
+        for (int e = p.start[i]; e < p.start[i + 1]; ++e)
+            for (int k = 0; k < W; ++k) v[k] += p.val[e] * xc[W * p.col[e] + k];
+        for (int k = 0; k < W; ++k) res[W * i + k] = v[k];
+    });
+    // x_i = B_ii^-1 (b_i - sum_{j>i in the block} B_ij x_j - sum_{other j} B_ij res_j), and the
+    // unconjugated products b^T x.
+    const std::array<double, 6> sums = backward_sweep_sum<6>(
+        n, block, level.threads,
+        [=](int i, int begin, int end, double* acc) {
+            double* xi = x + W * i;
+            if (!f[i]) {
+                for (int c = 0; c < W; ++c) xi[c] = 0;
+                return;
+            }
+            double S[W] = {}, g[W];
+            const RowRuns runs = row_runs(start, column, i, begin, end);
+            with_weights(weight, [&](const auto& w) {
+                add_run<W>(res, column, w, runs.first, runs.diagonal, S);
+                add_run<W>(res, column, w, runs.after, runs.last, S);
+                add_run_down<W>(x, column, w, runs.diagonal, runs.after, S);
+            });
+            off_diagonal<W, C>(a, S, g);
+            for (int c = 0; c < W; ++c) g[c] = b[W * i + c] - g[c];
+            scale<W, C>(inv, i, g, xi);
+            const double* bi = b + W * i;
+            if constexpr (W == 3) {
+                for (int c = 0; c < 3; ++c) acc[c] += bi[c] * xi[c];
+            } else {
+                for (int c = 0; c < 3; ++c) {
+                    acc[c] += bi[c] * xi[c] - bi[3 + c] * xi[3 + c];
+                    acc[3 + c] += bi[c] * xi[3 + c] + bi[3 + c] * xi[c];
+                }
+            }
+        },
+        [](std::array<double, 6>& total, const std::array<double, 6>& part) {
+            for (int k = 0; k < 6; ++k) total[k] += part[k];
+        });
+    if (dots)
+        for (int k = 0; k < 6; ++k) dots[k] = sums[k];
+}
+
 template <int W, bool C>
 void Multigrid::Impl::cycle(int l, const double* b, double* x, double* dots) {
+    if (l == 0 && gauss_seidel && levels.size() > 1) {
+        cycle_gauss_seidel<W, C>(b, x, dots);
+        return;
+    }
     Level& level = levels[l];
     const double* inv = level.inv.data();
     if (l + 1 == static_cast<int>(levels.size())) {
@@ -555,16 +710,7 @@ void Multigrid::Impl::cycle(int l, const double* b, double* x, double* dots) {
         for (int k = 1; k < sweeps; ++k) smooth<W, C>(level, l, b, x);
         residual<W, C>(level, l, b, x, res);
     }
-    const Csr& r = level.r;
-    double* bc = next.b.data();
-    for_each_row(next.n, next.threads, [&](int c) {
-        double s[W] = {};
-        for (int e = r.start[c]; e < r.start[c + 1]; ++e) {
-            const double* ri = res + W * r.col[e];
-            for (int k = 0; k < W; ++k) s[k] += r.val[e] * ri[k];
-        }
-        for (int k = 0; k < W; ++k) bc[W * c + k] = s[k];
-    });
+    restrict_to<W, C>(level, res, next);
     cycle<W, C>(l + 1, next.b.data(), next.x.data(), nullptr);
     const Csr& p = level.p;
     const double* xc = next.x.data();
@@ -607,10 +753,13 @@ void Multigrid::Impl::cycle(int l, const double* b, double* x, double* dots) {
 }
 
 Multigrid::Multigrid(const SparseOperator& op, const std::vector<double>& diagonal,
-                     const std::vector<char>& free, double a, Kind kind)
+                     const std::vector<char>& free, double a, Kind kind, bool gauss_seidel)
     : impl_(std::make_unique<Impl>(op, diagonal, free, a, kind)) {
+    impl_->gauss_seidel = gauss_seidel;
     impl_->build();
 }
+
+bool Multigrid::gauss_seidel() const { return impl_->gauss_seidel && impl_->levels.size() > 1; }
 
 Multigrid::~Multigrid() = default;
 

@@ -25,11 +25,15 @@
 // complex levels are P^T D P + i a P^T K P: the same real hierarchy, Galerkin coarse operators of
 // the complex matrix. The coarsest level (at most kCoarsest rows) is solved exactly by dense LU.
 //
-// Cycle: one V-cycle with damped Jacobi sweeps before and after the coarse correction (one on
-// the finest level, two below; weight 1.85 / rho, or 1.7 / rho with the complex diagonal for
-// Kind::Complex), started from zero. Pre and post smoothing are transposes of each other and the
-// coarse solve is exact, so the cycle is a symmetric (Real) or complex-symmetric (Complex) linear
-// operator: valid for CG and COCG.
+// Cycle: one V-cycle with smoothing sweeps before and after the coarse correction, started
+// from zero: on the finest level one block Gauss-Seidel sweep each way (forward, then backward:
+// sweeps.h; where its blocks hold most couplings, else a damped Jacobi sweep), below two damped
+// Jacobi sweeps (weight 1.85 / rho, or 1.7 / rho with the complex diagonal for Kind::Complex).
+// Pre and post smoothing are transposes of each other and the coarse solve is exact, so the
+// cycle is a symmetric (Real) or complex-symmetric (Complex) linear operator: valid for CG and
+// COCG. Gauss-Seidel on the finest level took 20-30 % fewer cycles at the same two passes over
+// K, 8-19 % less time (1 M-face torus and 1.2 M-face bunny, first order and L^2;
+// bench/results/issue12/preconditioners.md, "Gauss-Seidel smoothing").
 //
 // Determinism: set-up is sequential; in the cycle every row of every level is computed alone
 // (restriction by the stored rows of P^T), so the result has the same bits on any number of
@@ -51,9 +55,11 @@ public:
     enum class Kind { Real, Complex };
 
     // diagonal: D_i (> 0 on the free rows); free: nonzero = unknown; a > 0. op, diagonal and
-    // free must outlive the Multigrid.
+    // free must outlive the Multigrid. gauss_seidel: smooth the finest level by block
+    // Gauss-Seidel where it applies (sweeps.h), else by damped Jacobi.
     Multigrid(const SparseOperator& op, const std::vector<double>& diagonal,
-              const std::vector<char>& free, double a, Kind kind);
+              const std::vector<char>& free, double a, Kind kind, bool gauss_seidel = true);
+    bool gauss_seidel() const;  // the finest level is smoothed by Gauss-Seidel
     ~Multigrid();
     Multigrid(const Multigrid&) = delete;
     Multigrid& operator=(const Multigrid&) = delete;

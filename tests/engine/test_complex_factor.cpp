@@ -10,6 +10,7 @@
 #include "meshes.h"
 
 #include "complex_factor.h"
+#include "sweeps.h"
 #include "vertex_order.h"
 #include "fairing/half_edge.h"
 #include "fairing/operators.h"

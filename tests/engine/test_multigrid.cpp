@@ -4,8 +4,12 @@
 // step as the Jacobi solve, to the solver's tolerance, for the first-order system (torus, sphere
 // with fixed vertices, soft weights, several components) and the L^2 step's complex solve; an
 // iteration count that stays nearly flat as the time step grows 16x where Jacobi's grows as
-// sqrt(lambda_dt); the same bits on one and two threads.
+// sqrt(lambda_dt); the same bits on one and two threads; the finest level's Gauss-Seidel
+// smoothing gives the damped Jacobi smoothing's result in fewer cycles.
 #include "meshes.h"
+
+#include "multigrid.h"
+#include "vertex_order.h"
 
 #include "fairing/half_edge.h"
 #include "fairing/operators.h"
@@ -14,6 +18,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <complex>
 #include <cstring>
 
 using fairing::LinearSystem;
@@ -174,9 +179,10 @@ TEST(Multigrid, IterationsStayBoundedAsTheTimeStepGrows) {
     // 16x. A multigrid cycle's contraction is bounded independently of a in D - a K (the
     // Galerkin coarse levels carry the smooth modes whatever a): its count only grows while the
     // system turns from mass- to stiffness-dominated, then saturates. Measured on this mesh
-    // (10,242 vertices, tolerance 1e-10): first order at 4.74 / 76 / 1213, multigrid 14 / 25 / 31
-    // iterations, Jacobi 30 / 122 / 363; L^2 at 22.5 / 360 / 5760, multigrid (complex) 21 / 34 /
-    // 43, Jacobi (real L^2 system) 96 / 377 / 1448. The bounds leave some room and fail for
+    // (10,242 vertices, tolerance 1e-10): first order at 4.74 / 76 / 1213, multigrid 11 / 18 / 24
+    // iterations (14 / 25 / 31 with Jacobi smoothing on the finest level), Jacobi 30 / 122 / 363;
+    // L^2 at 22.5 / 360 / 5760, multigrid (complex) 18 / 26 / 33 (21 / 34 / 43), Jacobi (real
+    // L^2 system) 96 / 377 / 1448. The bounds leave some room and fail for
     // Jacobi (ratios 4.1, 3.0; 3.9, 3.8), and the complex Jacobi of Automatic (about 2 per 16x,
     // test_complex_factor.cpp) fails the second.
     const Case c = make(meshes::radial_noise(meshes::icosphere(5), 0.05, 23),
@@ -207,7 +213,7 @@ TEST(Multigrid, IterationsStayBoundedAsTheTimeStepGrows) {
 // Automatic stays on the complex Jacobi path below 50,000 vertices; when that solve runs out of
 // half the cap (on needles it can stall, solver.cpp), the V-cycle takes over from where it
 // stopped, with the rest. Here a strong L^2 step and a cap of 120: the Jacobi path needs more
-// than 60, the V-cycle about 43 in all (above).
+// than 60, the V-cycle about 33 in all (above).
 TEST(Multigrid, AutomaticHandsAnUnconvergedSolveToTheVCycle) {
     const Case c = make(meshes::radial_noise(meshes::icosphere(5), 0.05, 23),
                         Operator::CurvatureFlow);
@@ -328,5 +334,136 @@ TEST(Multigrid, TinyAndEmptyHierarchies) {
                 EXPECT_EQ(0, meshes::max_row_distance(mg.x, c.mesh.positions));
             }
         }
+    }
+}
+
+namespace {
+
+// COCG / CG preconditioned by one V-cycle, as solver.cpp runs it, on the first three columns
+// (real) or the complex system D + i a K_ff (complex), from zero to a relative residual of 1e-10
+// of the right-hand side M x: the cycles taken in *cycles.
+Positions cycle_solve(const Case& c, const LinearSystem& s, bool complex, bool gauss_seidel,
+                      int* cycles, bool* smoothed_by_gauss_seidel) {
+    using Kind = fairing::detail::Multigrid::Kind;
+    const int n = c.op.size(), w = complex ? 6 : 3;
+    const double a = complex ? std::sqrt(s.lambda_dt) : s.lambda_dt;
+    fairing::detail::Multigrid mg(c.op, s.diagonal, s.free, a,
+                                  complex ? Kind::Complex : Kind::Real, gauss_seidel);
+    *smoothed_by_gauss_seidel = mg.gauss_seidel();
+    // B v for the level-0 matrix, dense in the tests' sizes: via the operator's rows.
+    const auto product = [&](const std::vector<double>& v, std::vector<double>& out) {
+        for (int i = 0; i < n; ++i) {
+            for (int k = 0; k < w; ++k) out[w * i + k] = 0;
+            if (!s.free[i]) continue;
+            double kv[6] = {0, 0, 0, 0, 0, 0};
+            for (int e = c.op.row_start[i]; e < c.op.row_start[i + 1]; ++e)
+                for (int k = 0; k < w; ++k)
+                    kv[k] += c.op.weight[e] * (v[w * c.op.column[e] + k] - v[w * i + k]);
+            for (int k = 0; k < 3; ++k) {
+                if (complex) {
+                    out[w * i + k] = s.diagonal[i] * v[w * i + k] - a * kv[3 + k];
+                    out[w * i + 3 + k] = s.diagonal[i] * v[w * i + 3 + k] + a * kv[k];
+                } else {
+                    out[w * i + k] = s.diagonal[i] * v[w * i + k] - a * kv[k];
+                }
+            }
+        }
+    };
+    // Column by column with complex arithmetic (real: imaginary parts stay zero).
+    using Cd = std::complex<double>;
+    std::vector<double> r(static_cast<std::size_t>(w) * n, 0.0), z(r), p(r), q(r), work(r),
+        x(r);
+    for (int i = 0; i < n; ++i)
+        for (int k = 0; k < 3; ++k)
+            r[w * i + k] = s.free[i] ? c.op.mass[i] * c.mesh.positions(i, k) : 0.0;
+    const auto value = [&](const std::vector<double>& v, int i, int k) {
+        return complex ? Cd(v[w * i + k], v[w * i + 3 + k]) : Cd(v[w * i + k], 0.0);
+    };
+    const auto set = [&](std::vector<double>& v, int i, int k, Cd value) {
+        v[w * i + k] = value.real();
+        if (complex) v[w * i + 3 + k] = value.imag();
+    };
+    const auto dot = [&](const std::vector<double>& u, const std::vector<double>& v, int k) {
+        Cd sum = 0;
+        for (int i = 0; i < n; ++i) sum += value(u, i, k) * value(v, i, k);
+        return sum;
+    };
+    const auto norm = [&](const std::vector<double>& v, int k) {
+        double sum = 0;
+        for (int i = 0; i < n; ++i) sum += std::norm(value(v, i, k));
+        return std::sqrt(sum);
+    };
+    std::array<double, 3> goal;
+    for (int k = 0; k < 3; ++k) goal[k] = 1e-10 * norm(r, k);
+    mg.apply(r.data(), z.data(), work.data());
+    p = z;
+    std::array<Cd, 3> rho;
+    for (int k = 0; k < 3; ++k) rho[k] = dot(r, z, k);
+    *cycles = 1;
+    for (; *cycles < 500; ++*cycles) {
+        product(p, q);
+        bool done = true;
+        for (int k = 0; k < 3; ++k) {
+            const Cd alpha = rho[k] / dot(p, q, k);
+            for (int i = 0; i < n; ++i) {
+                set(x, i, k, value(x, i, k) + alpha * value(p, i, k));
+                set(r, i, k, value(r, i, k) - alpha * value(q, i, k));
+            }
+            done = done && norm(r, k) <= goal[k];
+        }
+        if (done) break;
+        mg.apply(r.data(), z.data(), work.data());
+        for (int k = 0; k < 3; ++k) {
+            const Cd next = dot(r, z, k), beta = next / rho[k];
+            rho[k] = next;
+            for (int i = 0; i < n; ++i) set(p, i, k, value(z, i, k) + beta * value(p, i, k));
+        }
+    }
+    Positions out(n, 3);
+    for (int i = 0; i < n; ++i)
+        for (int k = 0; k < 3; ++k) out(i, k) = x[w * i + k];
+    return out;
+}
+
+}  // namespace
+
+TEST(Multigrid, GaussSeidelSmoothingGivesJacobisResultInFewerCycles) {
+    // 40,962 vertices (one sweep block), fixed rows; first order and the complex L^2 factor.
+    const Case c = make(meshes::radial_noise(meshes::icosphere(6), 0.05, 23),
+                        Operator::CurvatureFlow);
+    const int n = c.op.size();
+    for (int order : {1, 2}) {
+        SCOPED_TRACE(testing::Message() << "order " << order);
+        const LinearSystem s = system(c, order, lambda(c, Operator::CurvatureFlow, order, 360),
+                                      meshes::every_kth_fixed(n, 101));
+        int gs = 0, jacobi = 0;
+        bool gs_used = false, jacobi_used = true;
+        const Positions a = cycle_solve(c, s, order == 2, true, &gs, &gs_used);
+        const Positions b = cycle_solve(c, s, order == 2, false, &jacobi, &jacobi_used);
+        EXPECT_TRUE(gs_used);
+        EXPECT_FALSE(jacobi_used);
+        EXPECT_LT(meshes::max_row_distance(a, b), 1e-8 * meshes::bbox_diagonal(b));
+        // Measured here: 29 against 40 cycles (first order), 34 against 44 (L^2).
+        EXPECT_LT(gs, 0.85 * jacobi) << gs << " against " << jacobi;
+    }
+}
+
+TEST(Multigrid, GaussSeidelSmoothingInBlocksIsTheSameOnOneAndTwoThreads) {
+    // 163,842 vertices in Z-order: blocks of kSweepBlock rows on the finest level.
+    const meshes::TriangleMesh sphere = meshes::radial_noise(meshes::icosphere(7), 0.05, 23);
+    Case c = make(fairing::detail::renumbered(sphere, fairing::detail::locality_order(sphere)),
+                  Operator::CurvatureFlow);
+    const int n = c.op.size();
+    for (int order : {1, 2}) {
+        SCOPED_TRACE(testing::Message() << "order " << order);
+        const LinearSystem s = system(c, order, lambda(c, Operator::CurvatureFlow, order, 360),
+                                      meshes::every_kth_fixed(n, 101));
+        c.op.threads = 1;
+        const Solved one = solve(c, s, Preconditioner::Multigrid);
+        c.op.threads = 2;
+        const Solved two = solve(c, s, Preconditioner::Multigrid);
+        EXPECT_TRUE(one.stats.converged);
+        EXPECT_EQ(one.stats.iterations, two.stats.iterations);
+        EXPECT_EQ(0, std::memcmp(one.x.data(), two.x.data(), sizeof(double) * 3 * n));
     }
 }
