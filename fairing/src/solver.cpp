@@ -544,12 +544,22 @@ std::array<double, 2> stiffness(const LinearSystem& system) {
 //     15; curvature 360 [18.5-23] V-cycle better but on the armadillo (0.86 against 0.61 s).
 //   camel, dragon, sphere (13-20 k, one sweep block): Gauss-Seidel halves the iterations
 //     and takes 25-40 % less time from 3.9 on.
-// So the umbrella keeps complex Jacobi (its iterations drop by 10-25 % only) up to the V-cycle
-// at 20; the other operators sweep from 3.5 and take the V-cycle from 14. What is lost against
-// the best column: the elephant's scale-dependent 22 (1.1x), the armadillo's and the torus'
-// curvature 360 (1.4x, 1.8x).
+// So the umbrella kept complex Jacobi (its iterations drop by 10-25 % only) up to the V-cycle
+// at 20, the other operators swept from 3.5 and took the V-cycle from 14.
+//
+// Then the V-cycle's finest level got Gauss-Seidel smoothing (multigrid.h: 20-30 % fewer
+// cycles), which moved the other operators' threshold down to 9. Same run format, Gauss-Seidel
+// / V-cycle: bunny curvature 22.5 [5.6] 3.91 / 3.94 s, scale-dependent 2.5 [5.0] 3.62 / 3.26,
+// curvature 90 [11.3] 5.10 / 4.21, scale-dependent 22.1 [14.9] 5.66 / 4.10, curvature 202
+// [16.9] 6.15 / 4.54; umbrella 197 [14.1] complex Jacobi 2.56 / 2.90; torus curvature 22.5
+// [5.5] 2.09 / 3.00, curvature 90 [11.0] 2.71 / 3.49, curvature 360 [22.0] 3.29 / 4.92;
+// armadillo, bunny00, elephant (104-178 k): ties at 4.6-5.8, the V-cycle 5-25 % faster from 10
+// on but on the armadillo's curvature 90 [9.25] (0.51 / 0.46 s); umbrella 197 [14.0] complex
+// Jacobi 0.29-0.48 s / 0.38-0.67. Below 9 the sweeps hold less memory than the hierarchy and
+// tie or win; from 9 the scans want the V-cycle, the torus not (1.3x and 1.5x lost at 11 and
+// 22).
 constexpr double kMultigridFirstOrder = 20;
-constexpr double kMultigridComplex = 14;
+constexpr double kMultigridComplex = 9;
 constexpr double kMultigridComplexUnitWeights = 20;
 constexpr double kMultigridRows = 50000;
 constexpr double kGaussSeidelFrom = 3.5;

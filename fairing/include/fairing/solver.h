@@ -32,10 +32,10 @@
 // on the 10 k and 100 k tori at time steps 1 and 22.5 (curvature) and on the 1 M torus and the
 // 1.2 M-face bunny at the defaults, and 1.2-1.9x less CPU time than Factored (the cheaper of
 // the old paths) on those two, so it replaces both there. Its preconditioner: complex Jacobi on
-// the mildest systems, block symmetric Gauss-Seidel in Eisenstat's form from a stiffness of 3.5
-// (half the iterations at ~1.2x the price: 1.2-1.4x faster at the curvature default on both
-// meshes), the V-cycle below from 16 (solver.cpp, use_multigrid). With soft weights Automatic
-// keeps the Jacobi trial and Factored.
+// the mildest systems and for the umbrella, block symmetric Gauss-Seidel in Eisenstat's form
+// from a stiffness of 3.5 (half the iterations at ~1.2x the price: 1.2-1.4x faster at the
+// curvature default on both meshes), the V-cycle below from 9 (the umbrella from 20; solver.cpp,
+// use_multigrid). With soft weights Automatic keeps the Jacobi trial and Factored.
 //
 // Multigrid (src/multigrid.h): a smoothed-aggregation V-cycle in place of Jacobi, for the
 // first-order system (CG) and the complex solve of L^2 (COCG, with the complex Galerkin
