@@ -24,17 +24,18 @@
 // Preconditioners: the multigrid V-cycle (multigrid.h) when given, else symmetric Gauss-Seidel
 // by blocks, P = (D + L) D^-1 (D + L^T) with D the complex diagonal and L the strictly lower
 // couplings inside each block of kSweepBlock rows (sweeps.h: so the result does not depend on
-// the number of threads; couplings between blocks are left to the Krylov method). It runs in Eisenstat's
-// form (Eisenstat 1981, "Efficient implementation of a class of preconditioned conjugate
-// gradient methods"): COCG on E^-1 A E^-T with E = (D + L) D^-1/2, whose product costs one
-// backward and one forward sweep, together one pass over the matrix like a product with A, so
-// an iteration costs about what a Jacobi iteration does and needs about half as many (measured:
-// bench/results/issue12/preconditioners.md, "Symmetric Gauss-Seidel").
+// the number of threads; couplings between blocks are left to the Krylov method), or complex
+// Jacobi. Gauss-Seidel runs in Eisenstat's form (Eisenstat 1981, "Efficient implementation of
+// a class of preconditioned conjugate gradient methods"): COCG on E^-1 A E^-T with
+// E = (D + L) D^-1/2, whose product costs one backward and one forward sweep, together one pass
+// over the matrix like a product with A, so an iteration costs ~1.2 Jacobi iterations and it
+// needs about half as many (bench/results/issue12/preconditioners.md, "Symmetric Gauss-Seidel").
 //
 // The complex residual does not bound the L^2 residual tightly (per mode the L^2 residual is up
 // to sqrt(1 + s^2 mu^2) times larger), so the iteration stops on the L^2 residual itself,
 // Re r_c + s K M^-1 Im r_c, and solve() confirms it on b - A x, correcting again if needed. The
-// solver's three complex vectors (144 bytes per vertex) and b are all the solve holds.
+// solver's three complex vectors (144 bytes per vertex; a fourth with Gauss-Seidel or the
+// V-cycle) and b are all the solve holds.
 #pragma once
 
 #include "fairing/solver.h"
@@ -46,7 +47,6 @@ namespace fairing {
 namespace detail {
 
 class Multigrid;
-
 
 // True when the L^2 system factors as above: order 2 and D = M on every free row.
 bool complex_factor_applies(const LinearSystem& system);
