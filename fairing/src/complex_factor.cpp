@@ -199,15 +199,15 @@ std::vector<double> ComplexFactorSolver::imaginary_diagonal() const {
     return imaginary;
 }
 
+ComplexFactorSolver::SweepView ComplexFactorSolver::sweep_view() const {
+    const SparseOperator& op = *system_.op;
+    return {system_.free.data(), system_.diagonal.data(), imaginary_.data(), op.row_start.data(),
+            op.column.data(), weights_of(op), s_};
+}
+
 std::array<double, 9> ComplexFactorSolver::sweep_start(ResidualNorm norm) {
     const SparseOperator& op = *system_.op;
-    const char* f = system_.free.data();
-    const double* m = system_.diagonal.data();
-    const double* im = imaginary_.data();
-    const int* start = op.row_start.data();
-    const int* column = op.column.data();
-    const double* weight = weights_of(op);
-    const double s = s_;
+    const SweepView v = sweep_view();
     double* rs = r_.data();
     double* ps = p_.data();
     const bool l2 = norm == ResidualNorm::L2;
@@ -218,19 +218,19 @@ std::array<double, 9> ComplexFactorSolver::sweep_start(ResidualNorm norm) {
         [=](int i, int begin, int end, double* a) {
             double* ri = rs + 6 * i;
             double* pi = ps + 6 * i;
-            if (!f[i]) {
+            if (!v.free[i]) {
                 for (int c = 0; c < 6; ++c) ri[c] = pi[c] = 0;
                 return;
             }
             double lower[6] = {0, 0, 0, 0, 0, 0};
-            const RowRuns runs = row_runs(start, column, i, begin, end);
-            with_weights(weight, [&](const auto& w) {
-                add_run<6>(rs, column, w, runs.in_block, runs.diagonal, lower);
+            const RowRuns runs = row_runs(v.start, v.column, i, begin, end);
+            with_weights(v.weight, [&](const auto& w) {
+                add_run<6>(rs, v.column, w, runs.in_block, runs.diagonal, lower);
             });
-            const Cx d{m[i], im[i]};
+            const Cx d{v.mass[i], v.imaginary[i]};
             const Cx inv = div({1, 0}, d);
             for (int c = 0; c < 3; ++c) {
-                const Cx t = mul(inv, {ri[c] + s * lower[3 + c], ri[3 + c] - s * lower[c]});
+                const Cx t = mul(inv, {ri[c] + v.s * lower[3 + c], ri[3 + c] - v.s * lower[c]});
                 ri[c] = pi[c] = t.re;
                 ri[3 + c] = pi[3 + c] = t.im;
             }
@@ -244,13 +244,7 @@ std::array<double, 9> ComplexFactorSolver::sweep_start(ResidualNorm norm) {
 std::array<double, 6> ComplexFactorSolver::sweep_product(const double* beta) {
     const SparseOperator& op = *system_.op;
     const int n = op.size();
-    const char* f = system_.free.data();
-    const double* m = system_.diagonal.data();
-    const double* im = imaginary_.data();
-    const int* start = op.row_start.data();
-    const int* column = op.column.data();
-    const double* weight = weights_of(op);
-    const double s = s_;
+    const SweepView v = sweep_view();
     const double* rs = r_.data();
     double* ps = p_.data();
     double* us = u_.data();
@@ -259,7 +253,7 @@ std::array<double, 6> ComplexFactorSolver::sweep_product(const double* beta) {
     // / D_i, i.e. (D + L^T) u = D p~.
     backward_sweep(n, block_, op.threads, [=](int i, int begin, int end) {
         double* ui = us + 6 * i;
-        if (!f[i]) {
+        if (!v.free[i]) {
             for (int c = 0; c < 6; ++c) ui[c] = 0;
             return;
         }
@@ -274,14 +268,14 @@ std::array<double, 6> ComplexFactorSolver::sweep_product(const double* beta) {
             }
         }
         double upper[6] = {0, 0, 0, 0, 0, 0};
-        const RowRuns runs = row_runs(start, column, i, begin, end);
-        with_weights(weight, [&](const auto& w) {
-            add_run_down<6>(us, column, w, runs.diagonal, runs.after, upper);
+        const RowRuns runs = row_runs(v.start, v.column, i, begin, end);
+        with_weights(v.weight, [&](const auto& w) {
+            add_run_down<6>(us, v.column, w, runs.diagonal, runs.after, upper);
         });
-        const Cx inv = div({1, 0}, {m[i], im[i]});
+        const Cx inv = div({1, 0}, {v.mass[i], v.imaginary[i]});
         for (int c = 0; c < 3; ++c) {
             // i s U / D_i with U = upper (re, im): i s U = (-s U.im, s U.re).
-            const Cx t = mul(inv, {-s * upper[3 + c], s * upper[c]});
+            const Cx t = mul(inv, {-v.s * upper[3 + c], v.s * upper[c]});
             ui[c] = pi[c] - t.re;
             ui[3 + c] = pi[3 + c] - t.im;
         }
@@ -293,28 +287,28 @@ std::array<double, 6> ComplexFactorSolver::sweep_product(const double* beta) {
         n, block_, op.threads,
         [=](int i, int begin, int end, double* a) {
             double* yi = ys + 6 * i;
-            if (!f[i]) {
+            if (!v.free[i]) {
                 for (int c = 0; c < 6; ++c) yi[c] = 0;
                 return;
             }
             // outside - lower in one pass: u_j with +w_ij outside the block, y_j with -w_ij
             // before i inside it.
             double outside[6] = {0, 0, 0, 0, 0, 0}, lower[6] = {0, 0, 0, 0, 0, 0};
-            const RowRuns runs = row_runs(start, column, i, begin, end);
-            with_weights(weight, [&](const auto& w) {
-                add_run<6>(us, column, w, runs.first, runs.in_block, outside);
-                add_run<6>(us, column, w, runs.after, runs.last, outside);
-                add_run<6>(ys, column, w, runs.in_block, runs.diagonal, lower);
+            const RowRuns runs = row_runs(v.start, v.column, i, begin, end);
+            with_weights(v.weight, [&](const auto& w) {
+                add_run<6>(us, v.column, w, runs.first, runs.in_block, outside);
+                add_run<6>(us, v.column, w, runs.after, runs.last, outside);
+                add_run<6>(ys, v.column, w, runs.in_block, runs.diagonal, lower);
             });
             double coupled[6];
             for (int c = 0; c < 6; ++c) coupled[c] = outside[c] - lower[c];
-            const Cx d{m[i], im[i]};
+            const Cx d{v.mass[i], v.imaginary[i]};
             const Cx inv = div({1, 0}, d);
             const double* pi = ps + 6 * i;
             const double* ui = us + 6 * i;
             for (int c = 0; c < 3; ++c) {
                 const double re = coupled[c], imag = coupled[3 + c];
-                const Cx t = mul(inv, {-s * imag, s * re});
+                const Cx t = mul(inv, {-v.s * imag, v.s * re});
                 const Cx q{pi[c] + t.re, pi[3 + c] + t.im};  // u + y
                 yi[c] = q.re - ui[c];
                 yi[3 + c] = q.im - ui[3 + c];
@@ -362,13 +356,7 @@ std::array<double, 9> ComplexFactorSolver::sweep_update(const double* alpha, Res
 
 void ComplexFactorSolver::sweep_residual() {
     const SparseOperator& op = *system_.op;
-    const char* f = system_.free.data();
-    const double* m = system_.diagonal.data();
-    const double* im = imaginary_.data();
-    const int* start = op.row_start.data();
-    const int* column = op.column.data();
-    const double* weight = weights_of(op);
-    const double s = s_;
+    const SweepView v = sweep_view();
     const double* rs = r_.data();
     double* vs = q_.data();
     // r_c = D r~ + i s sum_{j<i in the block} w_ij r~_j.
@@ -376,20 +364,20 @@ void ComplexFactorSolver::sweep_residual() {
         op.size(), block_, op.threads,
         [=](int i, int begin, int end, double*) {
             double* vi = vs + 6 * i;
-            if (!f[i]) {
+            if (!v.free[i]) {
                 for (int c = 0; c < 6; ++c) vi[c] = 0;
                 return;
             }
             double lower[6] = {0, 0, 0, 0, 0, 0};
-            const RowRuns runs = row_runs(start, column, i, begin, end);
-            with_weights(weight, [&](const auto& w) {
-                add_run<6>(rs, column, w, runs.in_block, runs.diagonal, lower);
+            const RowRuns runs = row_runs(v.start, v.column, i, begin, end);
+            with_weights(v.weight, [&](const auto& w) {
+                add_run<6>(rs, v.column, w, runs.in_block, runs.diagonal, lower);
             });
             const double* ri = rs + 6 * i;
             for (int c = 0; c < 3; ++c) {
-                const Cx rc = mul({m[i], im[i]}, {ri[c], ri[3 + c]});
-                vi[3 + c] = rc.re - s * lower[3 + c];
-                vi[c] = (rc.im + s * lower[c]) / m[i];
+                const Cx rc = mul({v.mass[i], v.imaginary[i]}, {ri[c], ri[3 + c]});
+                vi[3 + c] = rc.re - v.s * lower[3 + c];
+                vi[c] = (rc.im + v.s * lower[c]) / v.mass[i];
             }
         },
         [](std::array<double, 1>&, const std::array<double, 1>&) {});

@@ -107,6 +107,18 @@ private:
     void sweep_residual();
     // s K_ii per row (D_i = M_i + i s K_ii), 0 on fixed rows.
     std::vector<double> imaginary_diagonal() const;
+    // What the sweeps read: the free rows, D's real (M) and imaginary (s K_ii) parts, K's rows
+    // (weight null: all 1) and s.
+    struct SweepView {
+        const char* free;
+        const double* mass;
+        const double* imaginary;
+        const int* start;
+        const int* column;
+        const double* weight;
+        double s;
+    };
+    SweepView sweep_view() const;
 
     const LinearSystem& system_;
     double s_ = 0;

@@ -571,6 +571,20 @@ inline void off_diagonal(double a, const double* S, double* out) {
     }
 }
 
+// acc += b_i^T x_i per column, unconjugated: real in [0..2] (W = 3), else re in [0..2] and im in
+// [3..5].
+template <int W>
+inline void add_unconjugated(const double* bi, const double* xi, double* acc) {
+    if constexpr (W == 3) {
+        for (int c = 0; c < 3; ++c) acc[c] += bi[c] * xi[c];
+    } else {
+        for (int c = 0; c < 3; ++c) {
+            acc[c] += bi[c] * xi[c] - bi[3 + c] * xi[3 + c];
+            acc[3 + c] += bi[c] * xi[3 + c] + bi[3 + c] * xi[c];
+        }
+    }
+}
+
 }  // namespace
 
 // The V-cycle with level 0 smoothed by block Gauss-Seidel (sweeps.h): a forward sweep from zero
@@ -592,23 +606,28 @@ void Multigrid::Impl::cycle_gauss_seidel(const double* b, double* x, double* dot
     const char* f = free.data();
     const double a = this->a;
     const int block = gauss_seidel_block;
-    // x_i = B_ii^-1 (b_i - sum_{j<i in the block} B_ij x_j); x is zero on fixed rows.
+    // x_i = B_ii^-1 (b_i - sum_j B_ij v_j) over the couplings add(w, S) sums (S = sum_j w_ij
+    // v_j); zero on fixed rows.
+    const auto relax = [=](int i, const auto& add) {
+        double* xi = x + W * i;
+        if (!f[i]) {
+            for (int c = 0; c < W; ++c) xi[c] = 0;
+            return;
+        }
+        double S[W] = {}, g[W];
+        with_weights(weight, [&](const auto& w) { add(w, S); });
+        off_diagonal<W, C>(a, S, g);
+        for (int c = 0; c < W; ++c) g[c] = b[W * i + c] - g[c];
+        scale<W, C>(inv, i, g, xi);
+    };
+    // Forward, from zero: the couplings before i in its block.
     forward_sweep<1>(
         n, block, level.threads,
         [=](int i, int begin, int end, double*) {
-            double* xi = x + W * i;
-            if (!f[i]) {
-                for (int c = 0; c < W; ++c) xi[c] = 0;
-                return;
-            }
-            double S[W] = {}, g[W];
             const RowRuns runs = row_runs(start, column, i, begin, end);
-            with_weights(weight, [&](const auto& w) {
+            relax(i, [&](const auto& w, double* S) {
                 add_run<W>(x, column, w, runs.in_block, runs.diagonal, S);
             });
-            off_diagonal<W, C>(a, S, g);
-            for (int c = 0; c < W; ++c) g[c] = b[W * i + c] - g[c];
-            scale<W, C>(inv, i, g, xi);
         },
         [](std::array<double, 1>&, const std::array<double, 1>&) {});
     // res = b - B x: row i's diagonal and lower couplings give b_i, the rest is left.
@@ -646,30 +665,13 @@ void Multigrid::Impl::cycle_gauss_seidel(const double* b, double* x, double* dot
     const std::array<double, 6> sums = backward_sweep_sum<6>(
         n, block, level.threads,
         [=](int i, int begin, int end, double* acc) {
-            double* xi = x + W * i;
-            if (!f[i]) {
-                for (int c = 0; c < W; ++c) xi[c] = 0;
-                return;
-            }
-            double S[W] = {}, g[W];
             const RowRuns runs = row_runs(start, column, i, begin, end);
-            with_weights(weight, [&](const auto& w) {
+            relax(i, [&](const auto& w, double* S) {
                 add_run<W>(res, column, w, runs.first, runs.diagonal, S);
                 add_run<W>(res, column, w, runs.after, runs.last, S);
                 add_run_down<W>(x, column, w, runs.diagonal, runs.after, S);
             });
-            off_diagonal<W, C>(a, S, g);
-            for (int c = 0; c < W; ++c) g[c] = b[W * i + c] - g[c];
-            scale<W, C>(inv, i, g, xi);
-            const double* bi = b + W * i;
-            if constexpr (W == 3) {
-                for (int c = 0; c < 3; ++c) acc[c] += bi[c] * xi[c];
-            } else {
-                for (int c = 0; c < 3; ++c) {
-                    acc[c] += bi[c] * xi[c] - bi[3 + c] * xi[3 + c];
-                    acc[3 + c] += bi[c] * xi[3 + c] + bi[3 + c] * xi[c];
-                }
-            }
+            if (f[i]) add_unconjugated<W>(b + W * i, x + W * i, acc);
         },
         [](std::array<double, 6>& total, const std::array<double, 6>& part) {
             for (int k = 0; k < 6; ++k) total[k] += part[k];
@@ -737,16 +739,7 @@ void Multigrid::Impl::cycle(int l, const double* b, double* x, double* dots) {
         scale<W, C>(inv, i, g, u);
         double* xi = x + W * i;
         for (int c = 0; c < W; ++c) xi[c] = res[W * i + c] + u[c];
-        if (!dots) return;
-        const double* bi = b + W * i;
-        if constexpr (W == 3) {
-            for (int c = 0; c < 3; ++c) a[c] += bi[c] * xi[c];
-        } else {
-            for (int c = 0; c < 3; ++c) {
-                a[c] += bi[c] * xi[c] - bi[3 + c] * xi[3 + c];
-                a[3 + c] += bi[c] * xi[3 + c] + bi[3 + c] * xi[c];
-            }
-        }
+        if (dots) add_unconjugated<W>(b + W * i, xi, a);
     });
     if (dots)
         for (int k = 0; k < 6; ++k) dots[k] = sums[k];

@@ -26,13 +26,14 @@ constexpr int kSweepBlock = 2 * 4096;
 static_assert(kSweepBlock % kSumBlock == 0, "a sweep block holds whole sum blocks");
 
 // Calls fn(i, begin, end, a) for the rows of every sweep block [begin, end) of `block` rows (a
-// multiple of kSumBlock, or all rows) in increasing order, the blocks split over `threads`
-// threads; a collects row i's share of N sums (fresh zeros per sum block), combined in block
-// order as blocked_reduce does. (Sweeping two or four blocks on one thread a row of each in
-// turn, to overlap the chains of rows that depend on the row before, was slower: 1.2 M-face
-// bunny, curvature L^2 22.5, 3.53 s with one, 3.68 s with two, 4.05 s with four.)
-template <int N, class RowFn, class Combine>
-std::array<double, N> forward_sweep(int n, int block, int threads, RowFn fn, Combine combine) {
+// multiple of kSumBlock, or all rows), in increasing order when Forward, else decreasing, the
+// blocks split over `threads` threads; a collects row i's share of N sums (fresh zeros per sum
+// block), combined in block order as blocked_reduce does. (Sweeping two or four blocks on one
+// thread a row of each in turn, to overlap the chains of rows that depend on the row before,
+// was slower: 1.2 M-face bunny, curvature L^2 22.5, 3.53 s with one, 3.68 s with two, 4.05 s
+// with four.)
+template <bool Forward, int N, class RowFn, class Combine>
+std::array<double, N> sweep_sum(int n, int block, int threads, RowFn fn, Combine combine) {
     const int sweeps = (n + block - 1) / block;
     std::vector<std::array<double, N>> partial(static_cast<std::size_t>((n + kSumBlock - 1) /
                                                                         kSumBlock));
@@ -40,50 +41,39 @@ std::array<double, N> forward_sweep(int n, int block, int threads, RowFn fn, Com
     FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1))
     for (int g = 0; g < sweeps; ++g) {
         const int begin = g * block, end = std::min(n, begin + block);
-        for (int b = begin; b < end; b += kSumBlock) {
+        const int first = Forward ? begin : (end - 1) / kSumBlock * kSumBlock;
+        for (int b = first; b >= begin && b < end; b += Forward ? kSumBlock : -kSumBlock) {
             std::array<double, N> a{};
-            for (int i = b; i < std::min(end, b + kSumBlock); ++i) fn(i, begin, end, a.data());
+            const int last = std::min(end, b + kSumBlock);
+            if (Forward)
+                for (int i = b; i < last; ++i) fn(i, begin, end, a.data());
+            else
+                for (int i = last - 1; i >= b; --i) fn(i, begin, end, a.data());
             partial[static_cast<std::size_t>(b / kSumBlock)] = a;
         }
     }
     std::array<double, N> total{};
     for (const auto& part : partial) combine(total, part);
     return total;
+}
+
+template <int N, class RowFn, class Combine>
+std::array<double, N> forward_sweep(int n, int block, int threads, RowFn fn, Combine combine) {
+    return sweep_sum<true, N>(n, block, threads, fn, combine);
+}
+
+template <int N, class RowFn, class Combine>
+std::array<double, N> backward_sweep_sum(int n, int block, int threads, RowFn fn,
+                                         Combine combine) {
+    return sweep_sum<false, N>(n, block, threads, fn, combine);
 }
 
 // Calls fn(i, begin, end) for the rows of every sweep block in decreasing order.
 template <class RowFn>
 void backward_sweep(int n, int block, int threads, RowFn fn) {
-    const int sweeps = (n + block - 1) / block;
-    (void)threads;
-    FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1))
-    for (int g = 0; g < sweeps; ++g) {
-        const int begin = g * block, end = std::min(n, begin + block);
-        for (int i = end - 1; i >= begin; --i) fn(i, begin, end);
-    }
-}
-
-// Calls fn(i, begin, end, a) for the rows of every sweep block in decreasing order, with sums
-// as forward_sweep (each sum block's rows added from its last row down).
-template <int N, class RowFn, class Combine>
-std::array<double, N> backward_sweep_sum(int n, int block, int threads, RowFn fn,
-                                         Combine combine) {
-    const int sweeps = (n + block - 1) / block;
-    std::vector<std::array<double, N>> partial(static_cast<std::size_t>((n + kSumBlock - 1) /
-                                                                        kSumBlock));
-    (void)threads;
-    FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1))
-    for (int g = 0; g < sweeps; ++g) {
-        const int begin = g * block, end = std::min(n, begin + block);
-        for (int b = (end - 1) / kSumBlock * kSumBlock; b >= begin; b -= kSumBlock) {
-            std::array<double, N> a{};
-            for (int i = std::min(end, b + kSumBlock) - 1; i >= b; --i) fn(i, begin, end, a.data());
-            partial[static_cast<std::size_t>(b / kSumBlock)] = a;
-        }
-    }
-    std::array<double, N> total{};
-    for (const auto& part : partial) combine(total, part);
-    return total;
+    sweep_sum<false, 1>(
+        n, block, threads, [&fn](int i, int begin, int end, double*) { fn(i, begin, end); },
+        [](std::array<double, 1>&, const std::array<double, 1>&) {});
 }
 
 // A row of K sorted by column (assemble) in four runs, for the sweep block [begin, end) that
