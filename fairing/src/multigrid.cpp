@@ -535,11 +535,6 @@ void Multigrid::Impl::solve_coarsest(const Level& level, const double* b, double
     }
 }
 
-// x = V(b) on level l: smooth, restrict the residual, recurse, prolong, smooth. The finest
-// level takes one sweep each way, fused with the products (x = w D^-1 b is never stored, the
-// corrected x lives in res once the residual is restricted), which saves two passes over the
-// vectors; coarser levels take kCoarseSweeps each way. dots (level 0): the unconjugated
-// products b^T x per column (re; im for width 6), summed in fixed blocks.
 // next.b = R res (R = P^T, by its stored rows).
 template <int W, bool C>
 void Multigrid::Impl::restrict_to(const Level& level, const double* res, Level& next) const {
@@ -680,6 +675,12 @@ void Multigrid::Impl::cycle_gauss_seidel(const double* b, double* x, double* dot
         for (int k = 0; k < 6; ++k) dots[k] = sums[k];
 }
 
+// x = V(b) on level l: smooth, restrict the residual, recurse, prolong, smooth. Level 0 goes
+// to cycle_gauss_seidel where its sweeps apply. Else the finest level takes one Jacobi sweep
+// each way, fused with the products (x = w D^-1 b is never stored, the
+// corrected x lives in res once the residual is restricted), which saves two passes over the
+// vectors; coarser levels take kCoarseSweeps each way. dots (level 0): the unconjugated
+// products b^T x per column (re; im for width 6), summed in fixed blocks.
 template <int W, bool C>
 void Multigrid::Impl::cycle(int l, const double* b, double* x, double* dots) {
     if (l == 0 && gauss_seidel && levels.size() > 1) {

@@ -256,7 +256,7 @@ double vertex_mass(Operator op, bool normalized, bool gather_area, int v, Sparse
 }
 
 // Sorts row v of K by column, after its mass has added its weights up in the order they came:
-// the Gauss-Seidel sweeps (complex_factor.cpp) take a row's couplings before and after the
+// the Gauss-Seidel sweeps (sweeps.h) take a row's couplings before and after the
 // diagonal as two runs, and the products gather their neighbours in increasing order.
 void sort_row(SparseOperator& result, int v) {
     int* column = result.column.data();

@@ -566,8 +566,8 @@ constexpr double kGaussSeidelFrom = 3.5;
 
 // A later step of the same run (settings.previous: an L^2 step re-assembled on the smoothed
 // mesh) takes the V-cycle when the previous one did, or when complex Jacobi (or Gauss-Seidel,
-// below) needed more than this many iterations there: about what a V-cycle solve costs in Jacobi iterations (set-up
-// ~13, then ~35 cycles of ~3.2 each at the one-click strengths). The stiffness does not predict
+// below) needed more than this many iterations there: about what a V-cycle solve costs in
+// Jacobi iterations (set-up ~13, then ~35 cycles of ~3.2 each at the one-click strengths). The stiffness does not predict
 // the later steps: on the smoothed mesh it rises while Jacobi's iterations rise on a scan and
 // fall on a smooth shape. Measured (1 thread, curvature L^2 x4, process seconds of fair();
 // solves' iterations; complex Jacobi / V-cycle throughout):
