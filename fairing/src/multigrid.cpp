@@ -645,10 +645,11 @@ void Multigrid::Impl::cycle_gauss_seidel(const double* b, double* x, double* dot
     });
     restrict_to<W, C>(level, res, next);
     cycle<W, C>(1, next.b.data(), next.x.data(), nullptr);
-    // res = x + P x_coarse (the corrected x).
+    // res = x + P x_coarse (the corrected x). By reference: a copy of P per cycle cost 16 MB
+    // and its time on the 1 M-face torus.
     const Csr& p = level.p;
     const double* xc = next.x.data();
-    for_each_row(n, level.threads, [=](int i) {
+    for_each_row(n, level.threads, [&](int i) {
         double v[W];
         for (int k = 0; k < W; ++k) v[k] = x[W * i + k];
         for (int e = p.start[i]; e < p.start[i + 1]; ++e)
