@@ -40,14 +40,12 @@ bool any(const std::array<bool, 3>& active) { return active[0] || active[1] || a
 inline void k_row_stride6(int i, const double* vs, const int* start, const int* column,
                           const double* weight, double k[3]) {
     k[0] = k[1] = k[2] = 0;
-    const auto accumulate = [&](const auto& w) {
+    with_weights(weight, [&](const auto& w) {
         for (int e = start[i]; e < start[i + 1]; ++e) {
             const double* vj = vs + 6 * column[e];
             for (int c = 0; c < 3; ++c) k[c] += w[e] * (vj[c] - vs[6 * i + c]);
         }
-    };
-    if (weight) accumulate(weight);
-    else accumulate(UnitWeights{});
+    });
 }
 
 // Norm of r^ (|r^_i|^2 = |D_i| |r~_i|^2) and r^T r^ = sum D_i r~_i^2 for one row into a[0..8].
@@ -132,14 +130,12 @@ std::array<double, 6> ComplexFactorSolver::product(const Complex6& p, Complex6& 
         }
         const double* pi = ps + 6 * i;
         double k[6] = {0, 0, 0, 0, 0, 0};
-        const auto accumulate = [&](const auto& w) {
+        with_weights(weight, [&](const auto& w) {
             for (int e = start[i]; e < start[i + 1]; ++e) {
                 const double* pj = ps + 6 * column[e];
                 for (int c = 0; c < 6; ++c) k[c] += w[e] * (pj[c] - pi[c]);
             }
-        };
-        if (weight) accumulate(weight);
-        else accumulate(UnitWeights{});
+        });
         for (int c = 0; c < 3; ++c) {
             qi[c] = d[i] * pi[c] - s * k[3 + c];
             qi[3 + c] = d[i] * pi[3 + c] + s * k[c];

@@ -57,6 +57,14 @@ struct UnitWeights {
     double operator[](int) const { return 1.0; }
 };
 
+// Calls fn(w) with K's weights (w[k]), or UnitWeights when they are all 1 (weight null:
+// weights_of), so that one kernel serves both.
+template <class Fn>
+inline void with_weights(const double* weight, Fn fn) {
+    if (weight) fn(weight);
+    else fn(UnitWeights{});
+}
+
 // (s0, s1, s2) = (K x)_i = sum_j w_ij (x_j - x_i).
 template <class Weights>
 inline void k_row_with(int i, const double* xs, const int* start, const int* column,
@@ -75,8 +83,7 @@ inline void k_row_with(int i, const double* xs, const int* start, const int* col
 // k_row_with for K's weights, null when they are all 1 (weights_of).
 inline void k_row(int i, const double* xs, const int* start, const int* column,
                   const double* weight, double& s0, double& s1, double& s2) {
-    if (weight) k_row_with(i, xs, start, column, weight, s0, s1, s2);
-    else k_row_with(i, xs, start, column, UnitWeights{}, s0, s1, s2);
+    with_weights(weight, [&](const auto& w) { k_row_with(i, xs, start, column, w, s0, s1, s2); });
 }
 
 // Row i of A x = D x + scale (K v)_i into yi, given (s0, s1, s2) = (K v)_i and D_i = di, and on a

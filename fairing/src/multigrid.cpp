@@ -431,14 +431,12 @@ void Multigrid::Impl::row_product(const Level& level, int l, int i, const X& x,
         // x is zero on the fixed rows, so sum_j w_ij (x_j - x_i) is (K_ff x)_i.
         x(i, xi);
         double k[W] = {};
-        const auto accumulate = [&](const auto& w) {
+        with_weights(weights_of(op), [&](const auto& w) {
             for (int e = op.row_start[i]; e < op.row_start[i + 1]; ++e) {
                 x(op.column[e], xj);
                 for (int c = 0; c < W; ++c) k[c] += w[e] * (xj[c] - xi[c]);
             }
-        };
-        if (op.unit_weights) accumulate(UnitWeights{});  // SparseOperator::unit_weights
-        else accumulate(op.weight.data());
+        });
         const double d = diagonal[i];
         if constexpr (C) {
             for (int c = 0; c < 3; ++c) {

@@ -583,12 +583,9 @@ constexpr double kGaussSeidelFrom = 3.5;
 // iterations and a V-cycle step about 110 of them on the bunny, so the same threshold serves.
 constexpr int kJacobiWorthMultigrid = 100;
 
-// Whether the multigrid preconditioner is used: asked for, or chosen by Automatic.
-bool use_multigrid(const LinearSystem& system, Preconditioner preconditioner,
-                   const SolveStats* previous = nullptr) {
-    if (preconditioner == Preconditioner::Multigrid) return true;
-    if (preconditioner != Preconditioner::Automatic) return false;
-    const std::array<double, 2> s = stiffness(system);
+// Automatic's choice of the V-cycle, given the system's stiffness s.
+bool automatic_multigrid(const LinearSystem& system, const std::array<double, 2>& s,
+                         const SolveStats* previous) {
     if (previous && previous->complex_factor && system.order == 2 && s[1] >= kMultigridRows)
         return previous->multigrid || previous->iterations > kJacobiWorthMultigrid;
     return s[1] >= kMultigridRows &&
@@ -597,16 +594,25 @@ bool use_multigrid(const LinearSystem& system, Preconditioner preconditioner,
                                               : kMultigridComplex);
 }
 
+// Whether the multigrid preconditioner is used: asked for, or chosen by Automatic.
+bool use_multigrid(const LinearSystem& system, Preconditioner preconditioner) {
+    if (preconditioner == Preconditioner::Multigrid) return true;
+    return preconditioner == Preconditioner::Automatic &&
+           automatic_multigrid(system, stiffness(system), nullptr);
+}
+
 // CG's recursively updated residual drifts from the true one on ill-conditioned systems (the
 // L^2 forms), so convergence is confirmed on the true residual, restarting from the current
 // iterate when it disagrees, at most this many times.
 constexpr int kMaxRestarts = 8;
 
 // Automatic, L^2 without soft weights (complex_factor.h): corrections by the complex solve until
-// the true L^2 residual meets the goal. Needs only b besides the complex solver's vectors.
+// the true L^2 residual meets the goal, preconditioned by the V-cycle (multigrid), else by
+// Gauss-Seidel (gauss_seidel) or complex Jacobi. Needs only b besides the complex solver's
+// vectors.
 SolveStats solve_complex(const LinearSystem& system, Positions& x, const Positions& b,
                          const Column3& scale, const Column3& goal, const SolveSettings& settings,
-                         bool multigrid) {
+                         bool multigrid, bool gauss_seidel = false) {
     SolveStats stats;
     stats.complex_factor = true;
     // The hierarchy first: its set-up's work space is gone before the solver's vectors come.
@@ -617,11 +623,7 @@ SolveStats solve_complex(const LinearSystem& system, Positions& x, const Positio
                                                     detail::Multigrid::Kind::Complex);
         stats.multigrid = true;
     }
-    // Below kGaussSeidelFrom, and for the umbrella, complex Jacobi's iterations cost less than
-    // Gauss-Seidel's fewer (above).
-    detail::ComplexFactorSolver solver(
-        system, cycle.get(),
-        !system.op->unit_weights && stiffness(system)[0] >= kGaussSeidelFrom);
+    detail::ComplexFactorSolver solver(system, cycle.get(), gauss_seidel);
     stats.gauss_seidel = solver.gauss_seidel();
     Progress progress(settings, goal);
     std::array<bool, 3> active{false, false, false};
@@ -770,9 +772,14 @@ SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& 
                          settings.preconditioner == Preconditioner::Multigrid;
     if (!complex || !detail::complex_factor_applies(system))
         return solve_real(system, x, b, scale, goal, settings);
-    const bool multigrid = use_multigrid(system, settings.preconditioner, settings.previous);
-    if (multigrid || settings.preconditioner != Preconditioner::Automatic)
-        return solve_complex(system, x, b, scale, goal, settings, multigrid);
+    if (settings.preconditioner != Preconditioner::Automatic)
+        return solve_complex(system, x, b, scale, goal, settings, true);
+    const std::array<double, 2> s = stiffness(system);
+    if (automatic_multigrid(system, s, settings.previous))
+        return solve_complex(system, x, b, scale, goal, settings, true);
+    // Below kGaussSeidelFrom, and for the umbrella, complex Jacobi's iterations cost less than
+    // Gauss-Seidel's fewer (above).
+    const bool gauss_seidel = !system.op->unit_weights && s[0] >= kGaussSeidelFrom;
     // Automatic on the Jacobi path, with half the cap: a system it stalls on (needles whose
     // capped cotangents still leave it ill-conditioned: curvature L^2 x4 at time step 4 on
     // CGAL's camel with isotropic noise stalled at 1e-5 after 2000 iterations) is handed to the
@@ -780,7 +787,7 @@ SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& 
     // iterations in all, against 527 with the V-cycle throughout).
     SolveSettings first = settings;
     first.max_iterations = (settings.max_iterations + 1) / 2;
-    SolveStats stats = solve_complex(system, x, b, scale, goal, first, false);
+    SolveStats stats = solve_complex(system, x, b, scale, goal, first, false, gauss_seidel);
     SolveSettings rest = settings;
     rest.max_iterations = settings.max_iterations - stats.iterations;
     if (stats.converged || rest.max_iterations <= 0) return stats;

@@ -113,13 +113,6 @@ inline void add_run_down(const double* vs, const int* column, const Weights& w, 
     }
 }
 
-// Calls fn(w) with K's weights, or UnitWeights when they are all 1 (weights_of).
-template <class Fn>
-inline void with_weights(const double* weight, Fn fn) {
-    if (weight) fn(weight);
-    else fn(UnitWeights{});
-}
-
 // Gauss-Seidel needs every row of op to list its columns in increasing order (assemble's do)
 // and pays only when most couplings lie inside the sweep blocks (else it is Jacobi at a higher
 // price per iteration): on a 40,962-vertex icosphere numbered level by level, blocks of 8,192

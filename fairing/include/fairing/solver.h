@@ -35,13 +35,13 @@
 // the mildest systems and for the umbrella, block symmetric Gauss-Seidel in Eisenstat's form
 // from a stiffness of 3.5 (half the iterations at ~1.2x the price: 1.2-1.4x faster at the
 // curvature default on both meshes), the V-cycle below from 9 (the umbrella from 20; solver.cpp,
-// use_multigrid). With soft weights Automatic keeps the Jacobi trial and Factored.
+// automatic_multigrid). With soft weights Automatic keeps the Jacobi trial and Factored.
 //
 // Multigrid (src/multigrid.h): a smoothed-aggregation V-cycle in place of Jacobi, for the
 // first-order system (CG) and the complex solve of L^2 (COCG, with the complex Galerkin
 // hierarchy). Its iteration count saturates as lambda_dt grows where Jacobi's keeps growing, but
 // a cycle costs about three Jacobi iterations and its set-up about ten, so Automatic takes it
-// only for strong steps on large meshes (the measurements are in solver.cpp, use_multigrid).
+// only for strong steps on large meshes (the measurements are in solver.cpp, automatic_multigrid).
 #pragma once
 
 #include "fairing/fairing.h"
@@ -86,7 +86,7 @@ struct SolveSettings {
     Preconditioner preconditioner = Preconditioner::Automatic;
     // Automatic: the solve of the previous step of the same run (the same kind of system,
     // assembled again on the smoothed mesh), if any. How it went predicts this solve's Jacobi
-    // iterations better than the stiffness does (solver.cpp, use_multigrid).
+    // iterations better than the stiffness does (solver.cpp, automatic_multigrid).
     const SolveStats* previous = nullptr;
     // Called after each iteration with an estimate of the fraction done in [0, 1]: how far the
     // residual has come down, on a log scale, from where it started to the tolerance.
