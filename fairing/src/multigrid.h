@@ -31,8 +31,9 @@
 // Jacobi sweeps (weight 1.85 / rho, or 1.7 / rho with the complex diagonal for Kind::Complex).
 // Pre and post smoothing are transposes of each other and the coarse solve is exact, so the
 // cycle is a symmetric (Real) or complex-symmetric (Complex) linear operator: valid for CG and
-// COCG. Gauss-Seidel on the finest level took 20-30 % fewer cycles at the same two passes over
-// K, 8-19 % less time (1 M-face torus and 1.2 M-face bunny, first order and L^2;
+// COCG. Gauss-Seidel on the finest level took up to a quarter fewer cycles (3-26 %) at the same
+// two passes over K, 5-19 % less time on eight of nine runs and 3 % more on the torus'
+// one-click umbrella step (1 M-face torus and 1.2 M-face bunny, first order and L^2;
 // bench/results/issue12/preconditioners.md, "Gauss-Seidel smoothing").
 //
 // Determinism: set-up is sequential; in the cycle every row of every level is computed alone

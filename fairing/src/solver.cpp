@@ -547,7 +547,7 @@ std::array<double, 2> stiffness(const LinearSystem& system) {
 // So the umbrella kept complex Jacobi (its iterations drop by 10-25 % only) up to the V-cycle
 // at 20, the other operators swept from 3.5 and took the V-cycle from 14.
 //
-// Then the V-cycle's finest level got Gauss-Seidel smoothing (multigrid.h: 20-30 % fewer
+// Then the V-cycle's finest level got Gauss-Seidel smoothing (multigrid.h: up to 26 % fewer
 // cycles), which moved the other operators' threshold down to 9. Same run format, Gauss-Seidel
 // / V-cycle: bunny curvature 22.5 [5.6] 3.91 / 3.94 s, scale-dependent 2.5 [5.0] 3.62 / 3.26,
 // curvature 90 [11.3] 5.10 / 4.21, scale-dependent 22.1 [14.9] 5.66 / 4.10, curvature 202
