@@ -167,17 +167,18 @@ struct Lanczos {
     std::array<std::vector<double>, 3> alpha, beta;  // beta[j] joins basis vectors j and j+1
     std::array<double, 3> start_norm{{0, 0, 0}};
     std::array<bool, 3> active{{true, true, true}};
-    // With `pending`, current holds the next basis vector before its division by beta: the pass
-    // that reads it first (Sketch::add) scales it by `scale` as advance() would have,
-    // on the free rows (0 elsewhere), and so saves advance() a pass over it.
+    // With `pending`, current holds the next basis vector before its last two operations: the
+    // pass that reads it first (Sketch::add) makes it (current - shift previous) * scale on the
+    // free rows (0 elsewhere), as advance() would have, and so saves a pass over it. advance()
+    // leaves shift at 0; step_pair() leaves alpha there (it never forms the vector at all).
     bool pending = false;
-    std::array<double, 3> scale{{0, 0, 0}};
+    std::array<double, 3> scale{{0, 0, 0}}, shift{{0, 0, 0}};
 };
 
 // The basis vector's entry (i, c) from what `current` holds (see Lanczos::pending), written back.
 inline double settle(const Lanczos& l, const char* free, double* v, int i, int c) {
     if (!l.pending) return v[3 * i + c];
-    v[3 * i + c] = free[i] ? v[3 * i + c] * l.scale[c] : 0.0;
+    v[3 * i + c] = free[i] ? (v[3 * i + c] - l.shift[c] * l.previous(i, c)) * l.scale[c] : 0.0;
     return v[3 * i + c];
 }
 
@@ -240,40 +241,123 @@ std::array<double, 3> multiply(Context& ctx, Lanczos& l, Positions& product) {
     return dot;
 }
 
-// multiply() for two processes on first-order operators of the same sparsity pattern, without
-// soft weights, in one pass over the pattern: the movement and the Hutchinson probes of a linear
-// operator (one operator), or the movement and the Monte-Carlo perturbed movement (the operators
-// at the data and at the perturbed data: the same rows and columns, other weights). Each row's
-// columns are read once, from `sa`'s operator (a second k_row on the same operator finds its
-// entries cached). The same arithmetic (system_row), row for row and block for block, as two
-// apply_dot calls, so the same bits. Returns alpha for a ([0..2]) and b ([3..5]).
-std::array<double, 6> multiply_pair(const LinearSystem& sa, const Lanczos& a, const LinearSystem& sb,
-                                    const Lanczos& b, Positions& product_a, Positions& product_b) {
-    const SparseOperator& op = *sa.op;
-    const int n = op.size();
-    product_a.resize(n, 3);
-    product_b.resize(n, 3);
-    const double* xs[2] = {a.current.data(), b.current.data()};
-    double* ys[2] = {product_a.data(), product_b.data()};
-    const double* ds[2] = {sa.diagonal.empty() ? nullptr : sa.diagonal.data(),
-                           sb.diagonal.empty() ? nullptr : sb.diagonal.data()};
-    const double* weights[2] = {weights_of(op), weights_of(*sb.op)};
-    const char* fs[2] = {sa.free.data(), sb.free.data()};
-    const int* start = op.row_start.data();
-    const int* column = op.column.data();
-    // Order 1: A = D - lambda_dt K.
-    const double scales[2] = {-sa.lambda_dt, -sb.lambda_dt};
-    return blocked_sum<6>(n, op.threads, [=](int i, double* sum) {
-        for (int k = 0; k < 2; ++k) {
-            double s0, s1, s2;
-            k_row(i, xs[k], start, column, weights[k], s0, s1, s2);
-            system_row(ds[k] ? ds[k][i] : 0.0, scales[k], xs[k] + 3 * i, s0, s1, s2, fs[k][i] != 0,
-                       ys[k] + 3 * i, sum + 3 * k);
+// beta_j^2 of every active column, measured: stores beta_j and the division by it (the vector
+// is left pending, Lanczos::pending); a column whose beta_j vanishes against alpha_j and
+// beta_{j-1} has broken down (its Krylov space is exhausted: T_k is exact) and stops.
+void finish_step(Lanczos& l, int j, const std::array<double, 3>& squared) {
+    for (int c = 0; c < 3; ++c) {
+        l.scale[c] = 0;
+        if (!l.active[c]) continue;
+        const double a = l.alpha[c][j], b = j > 0 ? l.beta[c][j - 1] : 0.0;
+        const double norm = std::sqrt(squared[c]);  // NaN for a rounded negative: breakdown
+        if (!(norm > 1e-13 * (std::abs(a) + b))) {
+            l.active[c] = false;
+            continue;
+        }
+        l.beta[c].push_back(norm);
+        l.scale[c] = 1.0 / norm;
+    }
+    l.pending = true;
+}
+
+// Forms the pending vector's numerator current - shift previous (Lanczos::pending) and returns its
+// squared D-norm per column; the division by beta stays pending.
+std::array<double, 3> measure_pending(const Context& ctx, Lanczos& l) {
+    const StrengthProblem& p = ctx.p;
+    const char* f = p.free->data();
+    double* w = l.current.data();
+    const double* v = l.previous.data();
+    const std::array<double, 3> shift = l.shift;
+    l.shift = std::array<double, 3>{{0, 0, 0}};
+    return blocked_sum<3>(ctx.n, p.op->threads, [=, &p](int i, double* acc) {
+        if (!f[i]) return;
+        const double d = d_of(p, i);
+        for (int c = 0; c < 3; ++c) {
+            w[3 * i + c] -= shift[c] * v[3 * i + c];
+            acc[c] += d * w[3 * i + c] * w[3 * i + c];
         }
     });
 }
 
-// Whether multiply_pair serves the processes of contexts a and b (one check per search: it
+// step_pair() measures beta_j directly when its expansion keeps less than this share of |w'|^2
+// (about 5 of the 16 digits lost; the expansion's rounding is then ~1e-11 of beta_j^2).
+constexpr double kCancelled = 1e-5;
+
+// One Lanczos step of two processes on first-order operators of the same sparsity pattern,
+// without soft weights, in one pass over the pattern: the movement and the Hutchinson probes of
+// a linear operator (one operator), or the movement and the Monte-Carlo perturbed movement (the
+// operators at the data and at the perturbed data: the same rows and columns, other weights).
+// Each row's columns are read once, from `ca`'s operator (a second k_row on the same operator
+// finds its entries cached). The product y = unit C v is never stored: the pass writes
+// w' = y / d - beta_{j-1} v_{j-1} over v_{j-1} and sums what the next vector
+// (w' - alpha_j v_j) / beta_j needs, beta_j^2 = |w'|^2 - 2 alpha_j <w', v_j> + alpha_j^2 |v_j|^2
+// (D-inner products), so advance()'s pass over four vectors per process is gone; the vector is
+// formed where it is first read (Lanczos::pending). The expansion cancels when beta_j is small
+// against |w'|: then the vector is formed and measured directly (measure_pending()).
+void step_pair(Context& ca, Lanczos& a, Context& cb, Lanczos& b, int j) {
+    const SparseOperator& op = *ca.c.op;
+    const int n = op.size();
+    Context* cs[2] = {&ca, &cb};
+    Lanczos* ls[2] = {&a, &b};
+    const double* xs[2] = {a.current.data(), b.current.data()};
+    double* ws[2] = {a.previous.data(), b.previous.data()};
+    const double* ds[2] = {ca.c.diagonal.empty() ? nullptr : ca.c.diagonal.data(),
+                           cb.c.diagonal.empty() ? nullptr : cb.c.diagonal.data()};
+    const double* weights[2] = {weights_of(op), weights_of(*cb.c.op)};
+    const double* mass[2] = {ca.p.op->mass.data(), cb.p.op->mass.data()};
+    const double* soft[2] = {ca.p.weight ? ca.p.weight->data() : nullptr,
+                             cb.p.weight ? cb.p.weight->data() : nullptr};
+    const int data[2] = {ca.p.data_vertices, cb.p.data_vertices};
+    const char* f = ca.p.free->data();
+    const int* start = op.row_start.data();
+    const int* column = op.column.data();
+    // Order 1: A = D - lambda_dt K.
+    const double scales[2] = {-ca.c.lambda_dt, -cb.c.lambda_dt};
+    std::array<std::array<double, 3>, 2> beta_before{};
+    for (int k = 0; k < 2; ++k)
+        for (int c = 0; c < 3; ++c)
+            beta_before[k][c] = ls[k]->active[c] && j > 0 ? ls[k]->beta[c][j - 1] : 0.0;
+    // Per process and column: alpha, |w'|^2, <w', v>, |v|^2.
+    const std::array<double, 24> sums = blocked_sum<24>(n, op.threads, [=](int i, double* sum) {
+        for (int k = 0; k < 2; ++k) {
+            double s0, s1, s2, y[3];
+            k_row(i, xs[k], start, column, weights[k], s0, s1, s2);
+            const double* x = xs[k] + 3 * i;
+            system_row(ds[k] ? ds[k][i] : 0.0, scales[k], x, s0, s1, s2, f[i] != 0, y, sum + 12 * k);
+            if (!f[i]) continue;
+            // d_of(), from the arrays
+            const double d = soft[k] && i < data[k] ? mass[k][i] / soft[k][i] : mass[k][i];
+            double* w = ws[k] + 3 * i;
+            for (int c = 0; c < 3; ++c) {
+                w[c] = y[c] / d - beta_before[k][c] * w[c];
+                sum[12 * k + 3 + c] += d * w[c] * w[c];
+                sum[12 * k + 6 + c] += d * w[c] * x[c];
+                sum[12 * k + 9 + c] += d * x[c] * x[c];
+            }
+        }
+    });
+    for (int k = 0; k < 2; ++k) {
+        Lanczos& l = *ls[k];
+        bool cancelled = false;
+        std::array<double, 3> squared{{0, 0, 0}};
+        for (int c = 0; c < 3; ++c) {
+            if (!l.active[c]) continue;
+            const double alpha = sums[12 * k + c];
+            const double ww = sums[12 * k + 3 + c];
+            l.alpha[c].push_back(alpha);
+            squared[c] = ww - 2 * alpha * sums[12 * k + 6 + c] + alpha * alpha * sums[12 * k + 9 + c];
+            cancelled = cancelled || !(squared[c] > kCancelled * ww);
+        }
+        l.previous.swap(l.current);  // current: w'; previous: v_j
+        l.shift = l.scale = std::array<double, 3>{{0, 0, 0}};
+        for (int c = 0; c < 3; ++c)
+            if (l.active[c]) l.shift[c] = l.alpha[c][j];
+        if (cancelled) squared = measure_pending(*cs[k], l);
+        finish_step(l, j, squared);
+    }
+}
+
+// Whether step_pair serves the processes of contexts a and b (one check per search: it
 // compares the sparsity patterns).
 bool pairable(const Context& a, const Context& b) {
     return a.weight_root.empty() && b.weight_root.empty() && a.c.order == 1 && b.c.order == 1 &&
@@ -281,13 +365,11 @@ bool pairable(const Context& a, const Context& b) {
             (a.c.op->row_start == b.c.op->row_start && a.c.op->column == b.c.op->column));
 }
 
-// One recurrence step given alpha_j and beta_{j-1}: previous <- the next basis vector. With
-// `measure`, beta_j is measured and stored, else taken from what is stored (the second pass
-// regenerates the first pass's basis bit for bit).
-void advance(Context& ctx, Lanczos& l, int j, bool measure, const Positions& product,
-             bool defer = false) {
+// One recurrence step given alpha_j and beta_{j-1}: previous <- the next basis vector (its
+// division by beta left to the pass that reads it first with `defer`).
+void advance(Context& ctx, Lanczos& l, int j, const Positions& product, bool defer = false) {
     const int n = ctx.n;
-    std::array<double, 3> a{}, b{}, inverse{};
+    std::array<double, 3> a{}, b{};
     for (int c = 0; c < 3; ++c) {
         if (!l.active[c]) continue;
         a[c] = l.alpha[c][j];
@@ -309,30 +391,16 @@ void advance(Context& ctx, Lanczos& l, int j, bool measure, const Positions& pro
             acc[c] += d * w * w;
         }
     });
-    for (int c = 0; c < 3; ++c) {
-        if (!l.active[c]) continue;
-        if (measure) {
-            const double norm = std::sqrt(sums[c]);
-            // Breakdown: the Krylov space is exhausted, T_k is exact.
-            if (!(norm > 1e-13 * (std::abs(a[c]) + b[c]))) {
-                l.active[c] = false;
-                continue;
-            }
-            l.beta[c].push_back(norm);
-        } else if (static_cast<int>(l.beta[c].size()) <= j) {
-            l.active[c] = false;
-            continue;
-        }
-        inverse[c] = 1.0 / l.beta[c][j];
-    }
-    l.pending = defer;
-    l.scale = inverse;
-    if (!defer) {
-        FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1))
-        for (int i = 0; i < n; ++i)
-            for (int c = 0; c < 3; ++c) prev[3 * i + c] = f[i] ? prev[3 * i + c] * inverse[c] : 0.0;
-    }
     l.previous.swap(l.current);
+    l.shift = std::array<double, 3>{{0, 0, 0}};
+    finish_step(l, j, sums);
+    if (defer) return;
+    const std::array<double, 3> inverse = l.scale;
+    double* next = l.current.data();
+    FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1))
+    for (int i = 0; i < n; ++i)
+        for (int c = 0; c < 3; ++c) next[3 * i + c] = f[i] ? next[3 * i + c] * inverse[c] : 0.0;
+    l.pending = false;
 }
 
 int size_of(const Lanczos& l, int c) {
@@ -456,7 +524,7 @@ struct Perturbation {
     std::unique_ptr<Context> ctx;
     Lanczos u;
     std::array<std::vector<double>, 3> w, w_perturbed;  // [c][j]: b n . (basis vector j)
-    // The movement's and this process's products share a pass (multiply_pair), which reads the
+    // The movement's and this process's products share a pass (step_pair), which reads the
     // rows and columns of the surface operator only: op's own copies are released (28 bytes per
     // vertex).
     bool paired = false;
@@ -574,7 +642,7 @@ void step(Context& ctx, Lanczos& l, int j, Positions& product, bool defer = fals
     const std::array<double, 3> a = multiply(ctx, l, product);
     for (int c = 0; c < 3; ++c)
         if (l.active[c]) l.alpha[c].push_back(a[c]);
-    advance(ctx, l, j, true, product, defer);
+    advance(ctx, l, j, product, defer);
 }
 
 int argmin(const std::vector<double>& v) {
@@ -966,8 +1034,7 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sk
     double previous_minimizer = 0;
     bool previous_at_edge = false;
     int next_check = 6;
-    Positions product;  // the processes' products, one at a time
-    Positions product_b;  // the second process's beside the movement's (multiply_pair)
+    Positions product;  // the processes' products, one at a time (unpaired)
     // The movement's product shares its pass over the operator with the probes' (linear
     // operator) or the perturbed movement's (Monte-Carlo divergence).
     Context* partner_ctx = mc ? mc->ctx.get() : &ctx;
@@ -979,23 +1046,16 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sk
         const bool z_active = !mc && (z.active[0] || z.active[1] || z.active[2]);
         const bool mc_active = mc && (mc->u.active[0] || mc->u.active[1] || mc->u.active[2]);
         const bool partner_active = mc ? mc_active : z_active;
-        if (u_active || mc_active)
+        // The pass of the sketch forms the pending basis vectors of u and of the second process
+        // (Lanczos::pending): paired, both of step_pair's; else the perturbed movement's.
+        Lanczos* second = paired ? &partner : mc_active ? &mc->u : nullptr;
+        if (u_active || (second && partner_active))
             sketch.add(u, normals, free, ctx.p.op->threads, mc ? &mc->sign : nullptr,
-                       mc ? &mc->w : nullptr, mc_active ? &mc->u : nullptr,
-                       mc_active ? &mc->w_perturbed : nullptr);
-        // u's and the perturbed process's next basis vectors are divided by beta in the passes
-        // above at the next step (one pass over each fewer per step).
-        // Paired, both products come from multiply_pair even when one process has broken down
+                       mc ? &mc->w : nullptr, second, mc && second ? &mc->w_perturbed : nullptr);
+        // Paired, both products come from step_pair even when one process has broken down
         // (the perturbed operator has given its pattern back: apply_dot cannot run on it).
         if (paired && (u_active || partner_active)) {
-            const std::array<double, 6> a =
-                multiply_pair(ctx.c, u, partner_ctx->c, partner, product, product_b);
-            for (int c = 0; c < 3; ++c) {
-                if (u.active[c]) u.alpha[c].push_back(a[c]);
-                if (partner.active[c]) partner.alpha[c].push_back(a[3 + c]);
-            }
-            if (u_active) advance(ctx, u, j, true, product, true);
-            if (partner_active) advance(*partner_ctx, partner, j, true, product_b, mc != nullptr);
+            step_pair(ctx, u, *partner_ctx, partner, j);
         } else {
             if (u_active) step(ctx, u, j, product, true);
             if (z_active) step(ctx, z, j, product);
