@@ -61,6 +61,8 @@ template <class R> auto noise_edges(const R& r, int) -> decltype(double(r.noise_
 template <class R> double noise_edges(const R&, long) { return std::nan(""); }
 template <class R> auto strength_seconds(const R& r, int) -> decltype(double(r.strength_seconds)) { return r.strength_seconds; }
 template <class R> double strength_seconds(const R&, long) { return std::nan(""); }
+template <class R> auto strength_steps(const R& r, int) -> decltype(int(r.strength_iterations)) { return r.strength_iterations; }
+template <class R> int strength_steps(const R&, long) { return 0; }
 
 std::string num(double x) {
     if (!std::isfinite(x)) return "null";
@@ -82,7 +84,7 @@ struct Run {
     Score s;
     double rms_normal = std::nan("");  // RMS of n_i . (x_i - clean_i) / h: what SURE estimates
     double seconds = 0, chosen = std::nan(""), noise = std::nan(""), choosing = std::nan("");
-    int cg = 0;
+    int cg = 0, lanczos = 0;  // lanczos: the strength estimate's Lanczos steps
     std::string error;
 };
 
@@ -118,6 +120,7 @@ Run fair_once(const fairing::TriangleMesh& tm, const Mesh& input, const Truth& t
         run.chosen = chosen_step(r, 0);
         run.noise = noise_edges(r, 0);
         run.choosing = strength_seconds(r, 0);
+        run.lanczos = strength_steps(r, 0);
     } catch (const std::exception& e) {
         run.error = e.what();
         run.s.rms = std::nan("");
@@ -137,11 +140,11 @@ std::string json_text(const std::string& s) {
 void print_run(const char* kind, double ts, const Run& r) {
     std::printf("{\"kind\":\"%s\",\"time_step\":%s,\"rms\":%s,\"rms_normal\":%s,\"max\":%s,"
                 "\"volume_change\":%s,\"seconds\":%s,\"cg\":%d,\"noise_level_edges\":%s,"
-                "\"strength_seconds\":%s%s%s%s}\n",
+                "\"strength_seconds\":%s,\"strength_iterations\":%d%s%s%s}\n",
                 kind, num(ts).c_str(), num(r.s.rms).c_str(), num(r.rms_normal).c_str(),
                 num(r.s.max).c_str(),
                 num(r.s.volume_change).c_str(), num(r.seconds).c_str(), r.cg, num(r.noise).c_str(),
-                num(r.choosing).c_str(),
+                num(r.choosing).c_str(), r.lanczos,
                 r.error.empty() ? "" : ",\"error\":\"", json_text(r.error).c_str(),
                 r.error.empty() ? "" : "\"");
     std::fflush(stdout);
