@@ -661,8 +661,13 @@ constexpr double kConvergedSquaredSpectrum = 1e-3;
 constexpr int kStrictSteps = 100;  // Lanczos steps held to kConvergedSquaredSpectrum
 constexpr int kRelaxedSteps = 400;
 // The Lanczos process runs until its curves are converged up to this factor above the risk's
-// minimizer (and the minimizer has settled).
-constexpr double kMargin = 1.5;
+// minimizer (and the minimizer has settled). It was 1.5 before the three-checkpoint rule
+// (kNear, kFar), whose converged range advances faster: with 1.5 the 1 M-face torus's curvature
+// flow at noise 0.1 (one L^2 step) stopped at 109 Lanczos steps on a minimizer of 5012, two grid
+// points inside a flat risk, and chose 7943 (1.14x the best fixed step's error); with 2 it runs
+// on to 296 and chooses 3.8e4 (1.03x). On the 160 runs of auto-gap.md section 10, errors within
+// -1.5 % / +0.9 % of the rule before, in 6,068 Lanczos steps against its 7,764.
+constexpr double kMargin = 2.0;
 // The cap on the Lanczos steps: the last checkpoint (they fall at 6, 8, 11, ... 152, 212, 296,
 // 1.4x apart; search()). The cap was 400, whose next checkpoint would have been at 414: a run
 // that had not settled by 296 spent 104 more steps on each process that no checkpoint judged,
@@ -989,11 +994,11 @@ struct Search {
 // of lambda) past the last checkpoint's converged ones, agreement with the last checkpoint
 // settles a point; from there up to kFar, it must also have agreed with the one before (three
 // checkpoints in a row). Judging to kNear alone (the rule until session 11) let the converged
-// range advance 12 points every other checkpoint at most: the 1 M-face torus needed 212 Lanczos
-// steps at noise 0.1 and 0.25 where three-checkpoint agreement settles at 78, and 160 automatic
-// runs of the study's meshes took 7,764 steps against 5,482 with kFar, their errors within
-// -2.5 % and +5.1 % of each other's (geometric mean 1.0000; the denoising study: 732 against 731
-// of 744 automatic rows within 10 % of the oracle). Two checkpoints' agreement out to 24 points
+// range advance 12 points every other checkpoint at most: the 1 M-face torus's umbrella and
+// scale-dependent L^2 steps needed 212-296 Lanczos steps at every noise level where the
+// three-checkpoint rule settles at 78-152, and 160 automatic
+// runs of the study's meshes took 7,764 steps against 6,068 with kFar (and kMargin 2), their
+// errors within -1.5 % and +0.9 % of each other's. Two checkpoints' agreement out to 24 points
 // stopped on plateaus (the 1 M-face torus 2.4-20x off; auto-gap.md section 10).
 constexpr std::size_t kNear = 12;
 constexpr std::size_t kFar = 24;
