@@ -977,7 +977,8 @@ struct Curves {
     std::vector<double> gain;        // the restoration's factor on the filtered noise
     std::size_t first = 0;           // below: the filter keeps over 98 % (not evaluated)
     std::size_t reach = 0;           // [first, reach) converged since the last checkpoint
-    std::size_t near = 0;            // points below: two checkpoints judge them (kNear)
+    std::size_t near = 0;  // at the next checkpoint, points below: two checkpoints judge them,
+                           // points above: three (kNear)
 };
 
 struct Search {
@@ -996,10 +997,10 @@ struct Search {
 // checkpoints in a row). Judging to kNear alone (the rule until session 11) let the converged
 // range advance 12 points every other checkpoint at most: the 1 M-face torus's umbrella and
 // scale-dependent L^2 steps needed 212-296 Lanczos steps at every noise level where the
-// three-checkpoint rule settles at 78-152, and 160 automatic
-// runs of the study's meshes took 7,764 steps against 6,068 with kFar (and kMargin 2), their
-// errors within -1.5 % and +0.9 % of each other's. Two checkpoints' agreement out to 24 points
-// stopped on plateaus (the 1 M-face torus 2.4-20x off; auto-gap.md section 10).
+// three-checkpoint rule settles at 78-152, and 160 automatic runs of the study's meshes took
+// 7,764 steps against 6,068 with kFar (and kMargin 2), their errors within -1.5 % and +0.9 % of
+// each other's. Two checkpoints' agreement out to 24 points stopped on plateaus (the 1 M-face
+// torus 2.4-20x off; auto-gap.md section 10).
 constexpr std::size_t kNear = 12;
 constexpr std::size_t kFar = 24;
 
