@@ -583,9 +583,50 @@ constexpr double kGaussSeidelFrom = 3.5;
 // iterations and a V-cycle step about 110 of them on the bunny, so the same threshold serves.
 constexpr int kJacobiWorthMultigrid = 100;
 
+// Needle-rich meshes (noise in all directions leaves near-degenerate triangles, whose
+// cotangent weights are large) make the V-cycle slow while the Gauss-Seidel sweeps cope: one
+// curvature-flow L^2 step at its automatic time step took 119 V-cycles (14.9 s) against 205
+// Gauss-Seidel iterations (9.6 s) on the 1.2 M-face bunny with 0.25 edge of isotropic noise
+// (with the noise along the normals: 26 cycles, 4.0 s), 290 cycles (24.2 s) against 221
+// iterations (8.0 s) on the 1 M-face torus, 70 (1.83 s) against 138 (1.47 s) on bunny00 Loop x1
+// (151 k vertices); README, Performance, "Noise in all directions". What tells these meshes
+// apart is the share of K's couplings heavier than kHeavyCoupling times the mean: 0.09-0.13 % on
+// three Loop-subdivided scans (bunny, bunny00, armadillo) and the torus with isotropic noise, at
+// most 0.001 % on the same meshes with the noise along the normals. The one-click curvature flow
+// (L^2, 4 steps, automatic strength) on the bunny with isotropic noise: 77.1 s -> 44.7 s, the
+// later steps no longer handed to the V-cycle (kJacobiWorthMultigrid), the same result to 6e-10
+// of the bounding box's diagonal. Above kHeavyShare, when some couplings are negative (cotangent weights of obtuse
+// angles, eq. 14: needles have large ones of both signs), Automatic keeps the L^2 step off the
+// V-cycle (the hand-over after half the iteration cap stays). The scale-dependent weights
+// (eq. 11), all positive, are heavy on the same meshes at short edges, but there the V-cycle
+// still wins: 31 cycles (4.5 s) against 106 Gauss-Seidel iterations (5.2 s) on the bunny.
+constexpr double kHeavyCoupling = 16;
+constexpr double kHeavyShare = 1e-4;
+
+bool needle_rich(const SparseOperator& op) {
+    if (op.unit_weights || op.weight.empty()) return false;
+    const double* w = op.weight.data();
+    const int n = op.size();
+    const int* start = op.row_start.data();
+    const std::array<double, 2> total = detail::blocked_sum<2>(n, op.threads, [=](int i, double* s) {
+        for (int e = start[i]; e < start[i + 1]; ++e) s[0] += std::abs(w[e]);
+        s[1] += start[i + 1] - start[i];
+    });
+    if (!(total[1] > 0) || !(total[0] > 0)) return false;
+    const double heavy = kHeavyCoupling * total[0] / total[1];
+    const std::array<double, 2> count = detail::blocked_sum<2>(n, op.threads, [=](int i, double* s) {
+        for (int e = start[i]; e < start[i + 1]; ++e) {
+            s[0] += std::abs(w[e]) > heavy;
+            s[1] += w[e] < 0;
+        }
+    });
+    return count[1] > 0 && count[0] > kHeavyShare * total[1];
+}
+
 // Automatic's choice of the V-cycle, given the system's stiffness s.
 bool automatic_multigrid(const LinearSystem& system, const std::array<double, 2>& s,
                          const SolveStats* previous) {
+    if (system.order == 2 && s[1] >= kMultigridRows && needle_rich(*system.op)) return false;
     if (previous && previous->complex_factor && system.order == 2 && s[1] >= kMultigridRows)
         return previous->multigrid || previous->iterations > kJacobiWorthMultigrid;
     return s[1] >= kMultigridRows &&

@@ -233,6 +233,30 @@ TEST(Multigrid, AutomaticHandsAnUnconvergedSolveToTheVCycle) {
     EXPECT_LT(meshes::max_row_distance(x, mg.x), 1e-7 * c.h);
 }
 
+TEST(Multigrid, AutomaticKeepsNeedleRichMeshesOffTheVCycle) {
+    // Noise in all directions leaves needles, whose large cotangent weights slow the V-cycle
+    // down (solver.cpp, needle_rich): at a stiffness where Automatic takes the V-cycle for the
+    // same sphere displaced along its normals, it keeps this L^2 step off the V-cycle (on the
+    // Gauss-Seidel sweeps, or complex Jacobi where they do not apply). Either way the result is
+    // the V-cycle's step.
+    const fairing::TriangleMesh sphere = meshes::icosphere(7);  // 163,842 vertices
+    const double h = meshes::mean_edge_length(sphere.positions, sphere.triangles);
+    for (bool isotropic : {false, true}) {
+        SCOPED_TRACE(isotropic ? "noise in all directions" : "noise along the normals");
+        const Case c = make(isotropic ? meshes::box_noise(sphere, 0.45 * h, 29)
+                                      : meshes::radial_noise(sphere, 0.05, 23),
+                            Operator::CurvatureFlow);
+        const LinearSystem s = system(c, 2, lambda(c, Operator::CurvatureFlow, 2, 90),
+                                      std::vector<char>(c.op.size(), 1));
+        const Solved automatic = solve(c, s, Preconditioner::Automatic, 1e-8);
+        EXPECT_TRUE(automatic.stats.converged);
+        EXPECT_EQ(automatic.stats.multigrid, !isotropic);  // (the icosphere's own numbering
+        // keeps complex Jacobi rather than Gauss-Seidel: GaussSeidelInBlocksOnLargeMeshes...)
+        const Solved mg = solve(c, s, Preconditioner::Multigrid, 1e-8);
+        EXPECT_LT(meshes::max_row_distance(automatic.x, mg.x), 1e-5 * c.h);
+    }
+}
+
 TEST(Multigrid, AutomaticFollowsThePreviousStepOfTheRun) {
     // 163,842 vertices: above the 50,000 rows Automatic needs before it considers the V-cycle.
     // A later step of a run (SolveSettings::previous) is decided by how the previous one went,
