@@ -32,6 +32,15 @@ using Case = meshes::Assembled;
 
 Case make(const fairing::TriangleMesh& mesh, Operator op) { return meshes::assembled(mesh, op); }
 
+// The icosphere of `levels` refinements with radial noise of 5 % of its radius: most tests' mesh.
+fairing::TriangleMesh noisy_sphere(int levels) {
+    return meshes::radial_noise(meshes::icosphere(levels), 0.05, 23);
+}
+
+Case noisy_sphere_curvature(int levels) {
+    return make(noisy_sphere(levels), Operator::CurvatureFlow);
+}
+
 // lambda_dt of a step of dimensionless size t (fairing.h: time_step * h^(2 order), umbrella
 // time_step).
 double lambda(const Case& c, Operator op, int order, double t) {
@@ -69,6 +78,19 @@ Solved solve(const Case& c, const LinearSystem& s, Preconditioner p, double tole
     return out;
 }
 
+// The V-cycle's solve on one thread and on two: the same iterations, residual and bits.
+Solved expect_same_bits_on_two_threads(Case& c, const LinearSystem& s) {
+    c.op.threads = 1;
+    const Solved one = solve(c, s, Preconditioner::Multigrid);
+    c.op.threads = 2;
+    const Solved two = solve(c, s, Preconditioner::Multigrid);
+    EXPECT_TRUE(one.stats.converged);
+    EXPECT_EQ(one.stats.iterations, two.stats.iterations);
+    EXPECT_EQ(one.stats.residual, two.stats.residual);
+    EXPECT_EQ(0, std::memcmp(one.x.data(), two.x.data(), sizeof(double) * one.x.size()));
+    return one;
+}
+
 // Multigrid and Jacobi solve the same system to 1e-10: their results agree far below an edge.
 void expect_same_step(const Case& c, const LinearSystem& s) {
     const Solved mg = solve(c, s, Preconditioner::Multigrid);
@@ -97,7 +119,7 @@ TEST(Multigrid, FirstOrderStepEqualsJacobiOnATorusForEveryOperator) {
 }
 
 TEST(Multigrid, FirstOrderStepEqualsJacobiWithFixedVerticesSoftWeightsAndComponents) {
-    const fairing::TriangleMesh sphere = meshes::radial_noise(meshes::icosphere(5), 0.05, 23);
+    const fairing::TriangleMesh sphere = noisy_sphere(5);
     const fairing::TriangleMesh two = meshes::merge(
         sphere, meshes::translated(meshes::scaled(meshes::icosphere(4), 0.5), {3, 0, 0}));
     const Case c = make(two, Operator::CurvatureFlow);
@@ -133,7 +155,7 @@ TEST(Multigrid, FirstOrderStepEqualsTheDenseSolveOnAnOpenSurface) {
 TEST(Multigrid, L2StepByTheComplexSolveEqualsTheDenseSolve) {
     for (Operator op : meshes::kOperators) {
         SCOPED_TRACE(fairing::to_string(op));
-        const Case c = make(meshes::radial_noise(meshes::icosphere(3), 0.05, 23), op);
+        const Case c = make(noisy_sphere(3), op);
         const int n = c.op.size();
         const std::vector<char> free = meshes::every_kth_fixed(n, 17);
         const double lambda_dt = lambda(c, op, 2, op == Operator::Umbrella ? 10 : 22.5);
@@ -149,16 +171,14 @@ TEST(Multigrid, L2StepByTheComplexSolveEqualsTheDenseSolve) {
 }
 
 TEST(Multigrid, L2StepEqualsJacobiOnALargerSphere) {
-    const Case c = make(meshes::radial_noise(meshes::icosphere(5), 0.05, 23),
-                        Operator::CurvatureFlow);
+    const Case c = noisy_sphere_curvature(5);
     expect_same_step(c, system(c, 2, lambda(c, Operator::CurvatureFlow, 2, 22.5),
                                meshes::every_kth_fixed(c.op.size(), 31)));
 }
 
 TEST(Multigrid, L2WithSoftWeightsFallsBackToTheRealSolve) {
     // The complex factor needs D = M; Multigrid then behaves as Automatic.
-    const Case c = make(meshes::radial_noise(meshes::icosphere(3), 0.05, 23),
-                        Operator::CurvatureFlow);
+    const Case c = noisy_sphere_curvature(3);
     const int n = c.op.size();
     std::vector<double> weights(n, 1.0);
     weights[5] = 0.5;
@@ -185,8 +205,7 @@ TEST(Multigrid, IterationsStayBoundedAsTheTimeStepGrows) {
     // L^2 system) 96 / 377 / 1448. The bounds leave some room and fail for
     // Jacobi (ratios 4.1, 3.0; 3.9, 3.8), and the complex Jacobi of Automatic (about 2 per 16x,
     // test_complex_factor.cpp) fails the second.
-    const Case c = make(meshes::radial_noise(meshes::icosphere(5), 0.05, 23),
-                        Operator::CurvatureFlow);
+    const Case c = noisy_sphere_curvature(5);
     const int n = c.op.size();
     for (int order : {1, 2}) {
         SCOPED_TRACE(testing::Message() << "order " << order);
@@ -215,8 +234,7 @@ TEST(Multigrid, IterationsStayBoundedAsTheTimeStepGrows) {
 // stopped, with the rest. Here a strong L^2 step and a cap of 120: the Jacobi path needs more
 // than 60, the V-cycle about 33 in all (above).
 TEST(Multigrid, AutomaticHandsAnUnconvergedSolveToTheVCycle) {
-    const Case c = make(meshes::radial_noise(meshes::icosphere(5), 0.05, 23),
-                        Operator::CurvatureFlow);
+    const Case c = noisy_sphere_curvature(5);
     const LinearSystem s = system(c, 2, lambda(c, Operator::CurvatureFlow, 2, 256 * 22.5),
                                   std::vector<char>(c.op.size(), 1));
     fairing::SolveSettings settings;
@@ -262,8 +280,7 @@ TEST(Multigrid, AutomaticFollowsThePreviousStepOfTheRun) {
     // A later step of a run (SolveSettings::previous) is decided by how the previous one went,
     // whichever way the stiffness points: the V-cycle after a V-cycle or a long Jacobi solve,
     // Jacobi after a short one. Each result is the same step.
-    const Case c = make(meshes::radial_noise(meshes::icosphere(7), 0.05, 23),
-                        Operator::CurvatureFlow);
+    const Case c = noisy_sphere_curvature(7);
     struct Previous {
         double time_step;  // 1: the stiffness alone gives Jacobi; 90: the V-cycle
         bool multigrid;
@@ -300,25 +317,16 @@ TEST(Multigrid, BitIdenticalOnOneAndTwoThreads) {
     // over the two threads.
     for (int order : {1, 2}) {
         SCOPED_TRACE(testing::Message() << "order " << order);
-        Case c = make(meshes::radial_noise(meshes::icosphere(6), 0.05, 23),
-                      Operator::CurvatureFlow);
+        Case c = noisy_sphere_curvature(6);
         const int n = c.op.size();
         const LinearSystem s = system(c, order, lambda(c, Operator::CurvatureFlow, order, 22.5),
                                       meshes::every_kth_fixed(n, 101));
-        c.op.threads = 1;
-        const Solved one = solve(c, s, Preconditioner::Multigrid);
-        c.op.threads = 2;
-        const Solved two = solve(c, s, Preconditioner::Multigrid);
-        EXPECT_TRUE(one.stats.converged);
-        EXPECT_TRUE(one.stats.multigrid);
-        EXPECT_EQ(one.stats.iterations, two.stats.iterations);
-        EXPECT_EQ(one.stats.residual, two.stats.residual);
-        EXPECT_EQ(0, std::memcmp(one.x.data(), two.x.data(), sizeof(double) * 3 * n));
+        EXPECT_TRUE(expect_same_bits_on_two_threads(c, s).stats.multigrid);
     }
 }
 
 TEST(Multigrid, FairWithMultigridMatchesJacobiThroughThePublicEntryPoint) {
-    const fairing::TriangleMesh mesh = meshes::radial_noise(meshes::icosphere(4), 0.05, 23);
+    const fairing::TriangleMesh mesh = noisy_sphere(4);
     for (int order : {1, 2}) {
         SCOPED_TRACE(testing::Message() << "order " << order);
         fairing::Options o;
@@ -339,8 +347,7 @@ TEST(Multigrid, TinyAndEmptyHierarchies) {
     // All but a few vertices fixed: the hierarchy is one aggregation level and a tiny dense
     // solve (or nothing at all); the step still equals the dense one, and with no free vertex
     // nothing moves.
-    const Case c = make(meshes::radial_noise(meshes::icosphere(3), 0.05, 23),
-                        Operator::CurvatureFlow);
+    const Case c = noisy_sphere_curvature(3);
     const int n = c.op.size();
     for (int stride : {1, 40, 200}) {
         SCOPED_TRACE(testing::Message() << "free every " << stride << "th vertex");
@@ -453,8 +460,7 @@ Positions cycle_solve(const Case& c, const LinearSystem& s, bool complex, bool g
 
 TEST(Multigrid, GaussSeidelSmoothingGivesJacobisResultInFewerCycles) {
     // 40,962 vertices (one sweep block), fixed rows; first order and the complex L^2 factor.
-    const Case c = make(meshes::radial_noise(meshes::icosphere(6), 0.05, 23),
-                        Operator::CurvatureFlow);
+    const Case c = noisy_sphere_curvature(6);
     const int n = c.op.size();
     for (int order : {1, 2}) {
         SCOPED_TRACE(testing::Message() << "order " << order);
@@ -474,7 +480,7 @@ TEST(Multigrid, GaussSeidelSmoothingGivesJacobisResultInFewerCycles) {
 
 TEST(Multigrid, GaussSeidelSmoothingInBlocksIsTheSameOnOneAndTwoThreads) {
     // 163,842 vertices in Z-order: blocks of kSweepBlock rows on the finest level.
-    const meshes::TriangleMesh sphere = meshes::radial_noise(meshes::icosphere(7), 0.05, 23);
+    const meshes::TriangleMesh sphere = noisy_sphere(7);
     Case c = make(fairing::detail::renumbered(sphere, fairing::detail::locality_order(sphere)),
                   Operator::CurvatureFlow);
     const int n = c.op.size();
@@ -482,12 +488,6 @@ TEST(Multigrid, GaussSeidelSmoothingInBlocksIsTheSameOnOneAndTwoThreads) {
         SCOPED_TRACE(testing::Message() << "order " << order);
         const LinearSystem s = system(c, order, lambda(c, Operator::CurvatureFlow, order, 360),
                                       meshes::every_kth_fixed(n, 101));
-        c.op.threads = 1;
-        const Solved one = solve(c, s, Preconditioner::Multigrid);
-        c.op.threads = 2;
-        const Solved two = solve(c, s, Preconditioner::Multigrid);
-        EXPECT_TRUE(one.stats.converged);
-        EXPECT_EQ(one.stats.iterations, two.stats.iterations);
-        EXPECT_EQ(0, std::memcmp(one.x.data(), two.x.data(), sizeof(double) * 3 * n));
+        expect_same_bits_on_two_threads(c, s);
     }
 }
