@@ -262,17 +262,38 @@ Split Multigrid::Impl::coarsen(int n, const Row& row, const std::vector<double>&
     std::vector<int> agg;
     const int nc = aggregate(n, adiag, strong, agg);
     const double rho = jacobi_bound(n, row, adiag, aa);
-    const double omega = rho > 0 ? 4.0 / (3.0 * rho) : 0.0;
     *omega_out = rho > 0 ? smoother_weight() / rho : 0.0;
-    // P = (I - w D_A^-1 A) P_tent, row by row (merged per aggregate).
+    // The prolongator is smoothed with the filtered matrix A_F (Vanek, Mandel, Brezina 1996,
+    // section 3): repelling couplings (A_ij > 0: negative cotangent weights across obtuse
+    // angles) are lumped onto the diagonal, so A_F 1 = A 1 (constants stay exact) and no
+    // interpolation weight gets the wrong sign from them. On the 1 M-face jittered torus (11 %
+    // of A's entries repelling) curvature L^2 at 360 took 46 cycles with A, 37 with A_F; scans
+    // and the other operators moved by at most two (multigrid.h).
+    std::vector<double> filtered_diag(adiag);
+    for (int i = 0; i < n; ++i) {
+        if (!(adiag[i] > 0)) continue;
+        row(i, [&](int j, double m, double s) {
+            const double v = m - aa * s;
+            if (j != i && v > 0) filtered_diag[i] += v;
+        });
+    }
+    const auto filtered_row = [&](int i, auto&& fn) {
+        row(i, [&](int j, double m, double s) {
+            if (j == i) fn(j, filtered_diag[i], 0.0);
+            else if (!(m - aa * s > 0)) fn(j, m, s);
+        });
+    };
+    const double filtered_rho = jacobi_bound(n, filtered_row, filtered_diag, aa);
+    const double omega = filtered_rho > 0 ? 4.0 / (3.0 * filtered_rho) : 0.0;
+    // P = (I - w D_F^-1 A_F) P_tent, row by row (merged per aggregate).
     Csr& p = fine.p;
     std::vector<std::pair<int, double>> entries;
     for (int i = 0; i < n; ++i) {
         if (agg[i] >= 0) {
             entries.clear();
             entries.emplace_back(agg[i], 1.0);
-            const double scale = omega / adiag[i];
-            row(i, [&](int j, double m, double s) {
+            const double scale = omega / filtered_diag[i];
+            filtered_row(i, [&](int j, double m, double s) {
                 if (agg[j] >= 0) entries.emplace_back(agg[j], -scale * (m - aa * s));
             });
             std::sort(entries.begin(), entries.end(),

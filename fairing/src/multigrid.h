@@ -19,9 +19,10 @@
 // Hierarchy: built once from the real SPD matrix A = D - a K_ff. Aggregates of strongly
 // coupled rows (greedy, in row order: the vertex order is a space-filling curve, so aggregates
 // are compact), near-null space the constants (K 1 = 0), tentative prolongator = aggregate
-// indicator, smoothed once by damped Jacobi P = (I - w D_A^-1 A) P_tent with w = 4 / (3 rho),
-// rho a Gershgorin bound of rho(D_A^-1 A) (the smaller of the row-scaled and the symmetrically
-// scaled one). Every level keeps the mass and stiffness parts apart (P^T D P and P^T K P), so the
+// indicator, smoothed once by damped Jacobi on the filtered matrix, P = (I - w D_F^-1 A_F) P_tent
+// (A_F: A with its repelling couplings A_ij > 0, from obtuse angles, lumped onto the diagonal),
+// w = 4 / (3 rho), rho a Gershgorin bound of rho(D_F^-1 A_F) (the smaller of the row-scaled and
+// the symmetrically scaled one). Every level keeps the mass and stiffness parts apart (P^T D P and P^T K P), so the
 // complex levels are P^T D P + i a P^T K P: the same real hierarchy, Galerkin coarse operators of
 // the complex matrix. The coarsest level (at most kCoarsest rows) is solved exactly by dense LU.
 //
