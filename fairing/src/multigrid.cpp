@@ -18,12 +18,22 @@ namespace {
 // Rows of the coarsest level, solved by dense LU (a 300 x 300 complex LU is a few ms).
 constexpr int kCoarsest = 300;
 // A stalled coarsening may leave more rows than a dense LU affords: that level is then
-// smoothed (kCoarseSweeps Jacobi sweeps: still a symmetric operator) instead of solved.
+// smoothed (coarse_sweeps() Jacobi sweeps: still a symmetric operator) instead of solved.
 constexpr int kDenseLimit = 3000;
 // Jacobi sweeps before and after the coarse correction on the levels below the finest (where
 // they are cheap: the first coarse level has about 1/9 of the rows): measured on the 1.2 M-face
-// bunny (curvature L^2 22.5) 35 COCG iterations against 39 with one sweep.
+// bunny (curvature L^2 22.5) 35 COCG iterations against 39 with one sweep. The complex cycle
+// takes four: its coarse correction was the weak part on strong steps (the cycles kept falling
+// with more sweeps: 2 / 3 / 4 / 6 / 8 sweeps, curvature L^2 360, 1 M-face torus 37 / 34 / 30 /
+// 28 / 26, 1.2 M-face bunny 28 / 24 / 22 / 21 / 20). Four against two, one thread, CPU seconds
+// (cycles): the one-click steps on the torus, umbrella 1.1e5 3.14 -> 2.94 s (30 -> 24),
+// scale-dependent 4317 3.17 -> 2.93 (28 -> 23), curvature 36780 4.58 -> 4.69 (43 -> 39); on the
+// bunny umbrella 197 2.82 -> 2.72 (15 -> 13), scale-dependent 22.1 3.96 -> 3.33 (23 -> 17),
+// curvature 202 4.25 -> 3.95 (25 -> 21), curvature 360 4.58 -> 4.21 (torus 4.01 -> 3.73). The
+// real cycle (first order) keeps two: four left its cycles as they were (torus and bunny at
+// 4.74 and 75.84: 10, 15, 9, 12) and cost 1-8 % more time.
 constexpr int kCoarseSweeps = 2;
+constexpr int kComplexCoarseSweeps = 4;
 constexpr int kMaxLevels = 12;
 // Coarsening that keeps more than this fraction of the rows has stalled: stop there.
 constexpr double kStall = 0.8;
@@ -96,6 +106,7 @@ struct Multigrid::Impl {
     double smoother_weight() const {
         return kind == Kind::Complex ? kComplexSmootherWeight : kSmootherWeight;
     }
+    int coarse_sweeps() const { return kind == Kind::Complex ? kComplexCoarseSweeps : kCoarseSweeps; }
 
     Impl(const SparseOperator& o, const std::vector<double>& d, const std::vector<char>& f,
          double a_, Kind k)
@@ -699,7 +710,7 @@ void Multigrid::Impl::cycle_gauss_seidel(const double* b, double* x, double* dot
 // to cycle_gauss_seidel where its sweeps apply. Else the finest level takes one Jacobi sweep
 // each way, fused with the products (x = w D^-1 b is never stored, the
 // corrected x lives in res once the residual is restricted), which saves two passes over the
-// vectors; coarser levels take kCoarseSweeps each way. dots (level 0): the unconjugated
+// vectors; coarser levels take coarse_sweeps() each way. dots (level 0): the unconjugated
 // products b^T x per column (re; im for width 6), summed in fixed blocks.
 template <int W, bool C>
 void Multigrid::Impl::cycle(int l, const double* b, double* x, double* dots) {
@@ -715,12 +726,12 @@ void Multigrid::Impl::cycle(int l, const double* b, double* x, double* dots) {
             return;
         }
         for_each_row(level.n, level.threads, [&](int i) { scale<W, C>(inv, i, b + W * i, x + W * i); });
-        for (int k = 1; k < kCoarseSweeps; ++k) smooth<W, C>(level, l, b, x);
+        for (int k = 1; k < coarse_sweeps(); ++k) smooth<W, C>(level, l, b, x);
         return;
     }
     Level& next = levels[l + 1];
     double* res = work(level, l);
-    const int sweeps = l == 0 ? 1 : kCoarseSweeps;
+    const int sweeps = l == 0 ? 1 : coarse_sweeps();
     if (sweeps == 1) {
         const auto jacobi_b = [b, inv](int j, double* v) { scale<W, C>(inv, j, b + W * j, v); };
         for_each_row(level.n, level.threads, [&](int i) {

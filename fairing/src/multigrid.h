@@ -28,8 +28,9 @@
 //
 // Cycle: one V-cycle with smoothing sweeps before and after the coarse correction, started
 // from zero: on the finest level one block Gauss-Seidel sweep each way (forward, then backward:
-// sweeps.h; where its blocks hold most couplings, else a damped Jacobi sweep), below two damped
-// Jacobi sweeps (weight 1.85 / rho, or 1.7 / rho with the complex diagonal for Kind::Complex).
+// sweeps.h; where its blocks hold most couplings, else a damped Jacobi sweep), below damped
+// Jacobi sweeps, two for Kind::Real (weight 1.85 / rho) and four for Kind::Complex (1.7 / rho,
+// with the complex diagonal).
 // Pre and post smoothing are transposes of each other and the coarse solve is exact, so the
 // cycle is a symmetric (Real) or complex-symmetric (Complex) linear operator: valid for CG and
 // COCG. Gauss-Seidel on the finest level took up to a quarter fewer cycles (3-26 %) at the same
