@@ -558,6 +558,11 @@ std::array<double, 2> stiffness(const LinearSystem& system) {
 // Jacobi 0.29-0.48 s / 0.38-0.67. Below 9 the sweeps hold less memory than the hierarchy and
 // tie or win; from 9 the scans want the V-cycle, the torus not (1.3x and 1.5x lost at 11 and
 // 22).
+//
+// After the V-cycle's filtered prolongator and four coarse sweeps (multigrid.cpp, session 12;
+// same run format, Gauss-Seidel / V-cycle): bunny curvature 22.5 [5.6] 3.44 / 3.34 s, 90 [11.3]
+// 4.78 / 3.82; torus curvature 22.5 [5.5] 1.91 / 2.81, 90 [11.0] 2.50 / 2.93, 360 [22.0] 3.00 /
+// 3.58. The threshold stands: the torus still loses 1.2x at 11 and 22 (1.3x and 1.5x before).
 constexpr double kMultigridFirstOrder = 20;
 constexpr double kMultigridComplex = 9;
 constexpr double kMultigridComplexUnitWeights = 20;
