@@ -296,6 +296,7 @@ def issue12(m):
     # The defaults are automatic: the step they choose on this mesh, against L at equal cutoff.
     for op, _ in ISSUE12_DEFAULTS:
         chosen = engine(m, op, 2, "auto")["time_step"]
+        engine(m, op, 2, "auto", threads=2)
         if chosen > 0:
             engine(m, op, 2, chosen)
             engine(m, op, 1, math.sqrt(chosen))
