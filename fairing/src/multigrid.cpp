@@ -106,7 +106,9 @@ struct Multigrid::Impl {
     double smoother_weight() const {
         return kind == Kind::Complex ? kComplexSmootherWeight : kSmootherWeight;
     }
-    int coarse_sweeps() const { return kind == Kind::Complex ? kComplexCoarseSweeps : kCoarseSweeps; }
+    int coarse_sweeps() const {
+        return kind == Kind::Complex ? kComplexCoarseSweeps : kCoarseSweeps;
+    }
 
     Impl(const SparseOperator& o, const std::vector<double>& d, const std::vector<char>& f,
          double a_, Kind k)

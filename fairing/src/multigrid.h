@@ -22,9 +22,10 @@
 // indicator, smoothed once by damped Jacobi on the filtered matrix, P = (I - w D_F^-1 A_F) P_tent
 // (A_F: A with its repelling couplings A_ij > 0, from obtuse angles, lumped onto the diagonal),
 // w = 4 / (3 rho), rho a Gershgorin bound of rho(D_F^-1 A_F) (the smaller of the row-scaled and
-// the symmetrically scaled one). Every level keeps the mass and stiffness parts apart (P^T D P and P^T K P), so the
-// complex levels are P^T D P + i a P^T K P: the same real hierarchy, Galerkin coarse operators of
-// the complex matrix. The coarsest level (at most kCoarsest rows) is solved exactly by dense LU.
+// the symmetrically scaled one). Every level keeps the mass and stiffness parts apart (P^T D P
+// and P^T K P), so the complex levels are P^T D P + i a P^T K P: the same real hierarchy,
+// Galerkin coarse operators of the complex matrix. The coarsest level (at most kCoarsest rows)
+// is solved exactly by dense LU.
 //
 // Cycle: one V-cycle with smoothing sweeps before and after the coarse correction, started
 // from zero: on the finest level one block Gauss-Seidel sweep each way (forward, then backward:
