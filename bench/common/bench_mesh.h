@@ -334,6 +334,32 @@ inline Mesh loop_subdivide(const Mesh& m) {
     return out;
 }
 
+// Midpoint subdivision (one level): every triangle split 1-to-4 at its edge midpoints, no
+// vertex moved, so each child is similar to its parent and a raw scan keeps its triangle shapes
+// (its obtuse and thin triangles) at four times the faces, where Loop subdivision evens them
+// out.
+inline Mesh midpoint_subdivide(const Mesh& m) {
+    auto key = [](int a, int b) { return (uint64_t(std::min(a, b)) << 32) | uint32_t(std::max(a, b)); };
+    std::unordered_map<uint64_t, int> edge_vertex;
+    edge_vertex.reserve(m.f.size() * 2);
+    Mesh out;
+    out.v = m.v;
+    const auto midpoint = [&](int a, int b) {
+        const auto [it, added] = edge_vertex.emplace(key(a, b), int(out.v.size()));
+        if (added) out.v.push_back(mul(add(m.v[a], m.v[b]), 0.5));
+        return it->second;
+    };
+    out.f.reserve(m.f.size() * 4);
+    for (const auto& f : m.f) {
+        const int e0 = midpoint(f[0], f[1]), e1 = midpoint(f[1], f[2]), e2 = midpoint(f[2], f[0]);
+        out.f.push_back({f[0], e0, e2});
+        out.f.push_back({f[1], e1, e0});
+        out.f.push_back({f[2], e2, e1});
+        out.f.push_back({e0, e1, e2});
+    }
+    return out;
+}
+
 // Gaussian noise of sigma (absolute) along the vertex normals.
 inline Mesh add_normal_noise(const Mesh& m, double sigma, unsigned seed = 1) {
     std::mt19937_64 rng(seed);

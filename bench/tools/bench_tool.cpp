@@ -3,6 +3,7 @@
 // fairing-bench-tool: mesh preparation and measurement for bench/run.sh.
 //   torus FACES OUT.ply                      jittered torus with about FACES faces
 //   loop IN OUT.ply [LEVELS]                 Loop subdivision
+//   midpoint IN OUT.ply [LEVELS]             1-to-4 split at the edge midpoints (keeps triangle shapes)
 //   noise IN OUT.ply SIGMA_EDGES [SEED]      Gaussian noise of SIGMA mean edges along normals
 //   convert IN OUT.ply                       OFF/PLY -> binary PLY (float coordinates)
 //   info IN                                  JSON: vertices, faces, mean_edge, volume
@@ -52,7 +53,7 @@ bool reset_peak_rss() {
 }
 
 int usage() {
-    std::cerr << "usage: fairing-bench-tool torus|loop|noise|convert|info|metrics|fair ... (see source)\n";
+    std::cerr << "usage: fairing-bench-tool torus|loop|midpoint|noise|convert|info|metrics|fair ... (see source)\n";
     return 2;
 }
 
@@ -68,6 +69,11 @@ int main(int argc, char** argv) {
             Mesh m = read_mesh(argv[2]);
             const int levels = argc > 4 ? std::atoi(argv[4]) : 1;
             for (int l = 0; l < levels; ++l) m = loop_subdivide(m);
+            write_ply(argv[3], m);
+        } else if (cmd == "midpoint" && argc >= 4) {
+            Mesh m = read_mesh(argv[2]);
+            const int levels = argc > 4 ? std::atoi(argv[4]) : 1;
+            for (int l = 0; l < levels; ++l) m = midpoint_subdivide(m);
             write_ply(argv[3], m);
         } else if (cmd == "noise" && argc >= 5) {
             const Mesh m = read_mesh(argv[2]);
