@@ -600,9 +600,10 @@ constexpr int kJacobiWorthMultigrid = 100;
 // most 0.001 % on the same meshes with the noise along the normals. The one-click curvature flow
 // (L^2, 4 steps, automatic strength) on the bunny with isotropic noise: 77.1 s -> 44.7 s, the
 // later steps no longer handed to the V-cycle (kJacobiWorthMultigrid), the same result to 6e-10
-// of the bounding box's diagonal. Above kHeavyShare, when some couplings are negative (cotangent weights of obtuse
-// angles, eq. 14: needles have large ones of both signs), Automatic keeps the L^2 step off the
-// V-cycle (the hand-over after half the iteration cap stays). The scale-dependent weights
+// of the bounding box's diagonal. Above kHeavyShare, when some couplings are negative
+// (cotangent weights of obtuse angles, eq. 14: needles have large ones of both signs),
+// Automatic keeps the L^2 step off the V-cycle (the hand-over after half the iteration cap
+// stays). The scale-dependent weights
 // (eq. 11), all positive, are heavy on the same meshes at short edges, but there the V-cycle
 // still wins: 31 cycles (4.5 s) against 106 Gauss-Seidel iterations (5.2 s) on the bunny.
 constexpr double kHeavyCoupling = 16;
@@ -628,16 +629,18 @@ bool needle_rich(const SparseOperator& op) {
     return count[1] > 0 && count[0] > kHeavyShare * total[1];
 }
 
-// Automatic's choice of the V-cycle, given the system's stiffness s.
+// Automatic's choice of the V-cycle, given the system's stiffness s. The needle count (two
+// passes over K) runs only when the V-cycle would otherwise be taken.
 bool automatic_multigrid(const LinearSystem& system, const std::array<double, 2>& s,
                          const SolveStats* previous) {
-    if (system.order == 2 && s[1] >= kMultigridRows && needle_rich(*system.op)) return false;
-    if (previous && previous->complex_factor && system.order == 2 && s[1] >= kMultigridRows)
-        return previous->multigrid || previous->iterations > kJacobiWorthMultigrid;
-    return s[1] >= kMultigridRows &&
-           s[0] >= (system.order == 1          ? kMultigridFirstOrder
-                    : system.op->unit_weights ? kMultigridComplexUnitWeights
-                                              : kMultigridComplex);
+    if (s[1] < kMultigridRows) return false;
+    const bool wanted =
+        previous && previous->complex_factor && system.order == 2
+            ? previous->multigrid || previous->iterations > kJacobiWorthMultigrid
+            : s[0] >= (system.order == 1          ? kMultigridFirstOrder
+                       : system.op->unit_weights ? kMultigridComplexUnitWeights
+                                                 : kMultigridComplex);
+    return wanted && !(system.order == 2 && needle_rich(*system.op));
 }
 
 // Whether the multigrid preconditioner is used: asked for, or chosen by Automatic.
