@@ -699,6 +699,9 @@ constexpr double kWeightModelKeeps = 0.2;
 constexpr double kWeightedDirectVertices = 50000;
 // Second pass: points of the final lambda grid.
 constexpr int kGrid = 16;
+// Restored components whose restoration the sketch applies in its own space (the largest ones;
+// see Sketch::restored): each holds two sketched fields of kSketch rows.
+constexpr int kSketchedComponents = 16;
 
 // A sketch of the normal components n_i . r_i: CountSketch (Charikar, Chen & Farach-Colton
 // 2002) of every basis vector's normal part, so that |sketch of r(lambda)|^2 estimates
@@ -749,6 +752,22 @@ public:
             const std::uint64_t h = mix(static_cast<std::uint64_t>(i) + 0x5bd1e995ull);
             bucket_[i] = exact_ ? next++ : static_cast<int>(h % static_cast<std::uint64_t>(rows_));
             if (!exact_) sign_[i] = (h >> 40) & 1 ? 1.0f : -1.0f;
+        }
+        // The largest restored components, whose fields are sketched (ties: the lower index).
+        std::vector<int> by_size(nc);
+        for (int k = 0; k < nc; ++k) by_size[k] = k;
+        std::stable_sort(by_size.begin(), by_size.end(),
+                         [&](int a, int b) { return count_[a] > count_[b]; });
+        slot_.assign(nc, -1);
+        const int sketched = std::min(nc, kSketchedComponents);
+        for (int s = 0; s < sketched; ++s) slot_[by_size[s]] = s;
+        field_sketch_ = Eigen::MatrixXd::Zero(rows_, sketched);
+        one_sketch_ = Eigen::MatrixXd::Zero(rows_, sketched);
+        for (std::size_t i = 0; i < restoration_.component.size(); ++i) {
+            const int k = restoration_.component[i];
+            if (k < 0 || slot_[k] < 0 || bucket_[i] < 0) continue;
+            field_sketch_(bucket_[i], slot_[k]) += static_cast<double>(sign_[i]) * restoration_.field[i];
+            one_sketch_(bucket_[i], slot_[k]) += static_cast<double>(sign_[i]);
         }
     }
     bool exact() const { return exact_; }
@@ -891,24 +910,35 @@ public:
         for (std::size_t g = first; g < last; ++g) {
             const Eigen::Index col = static_cast<Eigen::Index>(g - first);
             double gain = 1;
-            out[g] = restored(y.col(col), v.col(col).squaredNorm(), gain);
+            out[g] = restored(y.col(col), v.col(col), gain);
             if (gains) (*gains)[g] = gain;
         }
         return out;
     }
 
 private:
-    // RSS_n after the restoration, and in `gain` the mean factor it multiplies the filtered
-    // noise by. Per component, with V = (a . s) / 3 (the volume seen from the centroid) and the
-    // step's first-order volume loss a . n.r, the step is read as a shrink by 1 - delta,
-    // delta = a . n.r / 3V: the volume left is V (1 - delta)^3 and beta = 1 / (1 - delta). The
-    // residual is (1 - beta) s + beta n.r: |.|^2 = (1 - beta)^2 |s|^2 + 2 beta (1 - beta) s . n.r
-    // + beta^2 |n.r|^2 over the component. The sketch gives |n.r|^2 for the whole mesh; the
-    // components' share of it is not known separately, so the beta^2 applies to the whole RSS_n
-    // when everything is restored (one closed component, the common case) and to none otherwise.
-    // An offset component moves by t = a . n.r / sum a, to first order, and leaves the noise
-    // alone (beta = 1): the residual is n.r - t, |.|^2 = |n.r|^2 - 2 t 1 . n.r + t^2 N. Which of
-    // the two restore_measure uses, it decides as here, on the volume ratio (1 - delta)^-3.
+    // RSS_n after the restoration, from the coefficients y of the basis vectors and the sketch of
+    // n.r, and in `gain` the mean factor it multiplies the filtered noise by. Per component,
+    // with V = (a . s) / 3 (the volume seen from the centroid) and the step's first-order volume
+    // loss a . n.r, the step is read as a shrink by 1 - delta, delta = a . n.r / 3V: the volume
+    // left is V (1 - delta)^3 and beta = 1 / (1 - delta). The residual is (1 - beta) s + beta n.r
+    // over the component. The sketch holds n.r for the whole mesh, not per component, so the
+    // beta applies to all of n.r when everything is restored (one closed component, the common
+    // case) and to none of it otherwise. An offset component moves by t = a . n.r / sum a, to
+    // first order, and leaves the noise alone (beta = 1): the residual is n.r - t. Which of the
+    // two restore_measure uses, it decides as here, on the volume ratio (1 - delta)^-3.
+    //
+    // The residual is formed in the sketch's space, beta S(n.r) + (1 - beta) S(s) - t S(1), and
+    // only then squared: |S(n.r)|^2 is off by about sqrt(2 / rows) of |n.r|^2, and n.r holds the
+    // whole shrink that the restoration takes back. Squaring first and subtracting the shrink's
+    // exact terms left that error on a difference of large terms: the 25,602-vertex two-density
+    // sphere (one curvature-flow step, a quarter edge of noise along the normals), whose step
+    // shrinks it by a quarter of its radius at time step 316, had a sketched RSS_n falling from
+    // 0.78 at 79 to 0.22 at 316 and chose 316 (3.2x the best fixed step's error); formed in the
+    // sketch's space it chooses what the exact RSS_n chooses (bench/results/issue11/auto-gap.md
+    // section 13). Components past the kSketchedComponents largest, which shrink by no more and
+    // hold fewer vertices, keep the squared form: |n.r|^2 + (1 - beta)^2 |s|^2
+    // + 2 beta (1 - beta) s . n.r, or |n.r|^2 - 2 t 1 . n.r + t^2 N.
     //
     // Why a shrink and not the linear volume V - a . n.r: a shrinking convex shape keeps more
     // volume than the linear term says (V (1 - 3 delta + 3 delta^2 - ...)), so beta came out too
@@ -918,10 +948,13 @@ private:
     // fair()'s result (same normals); now 0.1171, 0.1246 and 0.1312 at 26, 46 and 79 against
     // 0.1170, 0.1242 and 0.1298. The choice moved from 10.5 (error 1.30x the best fixed step's) to
     // 47 (1.01x; bench/results/issue11/auto-gap.md §5).
-    double restored(const Eigen::Ref<const Eigen::VectorXd>& y, double rss_n, double& gain) const {
+    double restored(const Eigen::Ref<const Eigen::VectorXd>& y,
+                    const Eigen::Ref<const Eigen::VectorXd>& sketched, double& gain) const {
         gain = 1;
-        if (restoration_.components == 0) return rss_n;
+        if (restoration_.components == 0) return sketched.squaredNorm();
         double extra = 0, weighted_beta = 0, covered = 0;
+        const Eigen::Index fields = field_sketch_.cols();
+        Eigen::VectorXd along_field = Eigen::VectorXd::Zero(fields), along_one = along_field;
         for (int k = 0; k < restoration_.components; ++k) {
             if (!(volume_[k] > 0)) continue;
             double by_volume = 0, by_field = 0, by_sum = 0;
@@ -934,26 +967,34 @@ private:
             const int offset = restoration_.offset[k];
             const double left = std::max(1 - by_volume / (3 * v), 0.1);  // 1 - delta
             const double beta = 1 / left;
+            const int slot = slot_[k];
+            covered += count_[k];
             if (offset == 1 ||
                 (offset == 2 && std::abs(beta * beta * beta - 1) <= kMaxOffsetChange)) {
                 const double t = by_volume / area_[k];
-                extra += t * t * count_[k] - 2 * t * by_sum;
+                if (slot >= 0) along_one(slot) = -t;
+                else extra += t * t * count_[k] - 2 * t * by_sum;
                 weighted_beta += count_[k];
-                covered += count_[k];
                 continue;
             }
-            extra += (1 - beta) * (1 - beta) * field2_[k] + 2 * beta * (1 - beta) * by_field;
+            if (slot >= 0) along_field(slot) = 1 - beta;
+            else extra += (1 - beta) * (1 - beta) * field2_[k] + 2 * beta * (1 - beta) * by_field;
             weighted_beta += beta * count_[k];
-            covered += count_[k];
         }
-        if (covered == 0) return rss_n;
+        if (covered == 0) return sketched.squaredNorm();
         gain = (weighted_beta + (total_ - covered)) / total_;
         const double beta_all = covered == total_ ? weighted_beta / covered : 1.0;
-        return extra + beta_all * beta_all * rss_n;
+        const Eigen::VectorXd residual =
+            beta_all * sketched + field_sketch_ * along_field + one_sketch_ * along_one;
+        return extra + residual.squaredNorm();
     }
 
     Restoration restoration_;
     std::vector<double> volume_, area_, field2_, count_;  // per component: a . s, sum a, |s|^2, N
+    // The kSketchedComponents largest components' slots (-1: not sketched) and the sketches of
+    // their fields s and indicators 1, one column per slot.
+    std::vector<int> slot_;
+    Eigen::MatrixXd field_sketch_, one_sketch_;
     double total_ = 0;                             // data vertices
     std::vector<std::vector<double>> volume_part_, field_part_, sum_part_;  // per column, component
     int rows_ = 0;
