@@ -307,6 +307,38 @@ TEST(AutoStrength, SketchedResidualOfALargeShrinkingSphere) {
     }
 }
 
+// Twenty closed components past the exact sketch: the sixteen largest have their restoration
+// applied in the sketch's space, the others keep the squared form (Sketch::restored). Every
+// sphere keeps its volume and the choice lands near the best fixed step: 63, 1.001x its error
+// (squared with the shrink, before: 25, 1.075x).
+TEST(AutoStrength, ManyRestoredComponentsPastTheSketchedOnes) {
+    TriangleMesh m;
+    const int spheres = 20;
+    std::vector<Vec3> centres;
+    for (int k = 0; k < spheres; ++k) {
+        centres.push_back(Vec3(3.0 * k, 0, 0));
+        const TriangleMesh one = meshes::translated(noisy_sphere(0.25, 3, 40 + k), centres.back());
+        m = k == 0 ? one : meshes::merge(m, one);
+    }
+    ASSERT_GT(m.positions.rows(), 8192);
+    const auto error = [&](const Positions& p) {
+        double sum = 0;
+        for (int i = 0; i < p.rows(); ++i)
+            sum += std::pow((meshes::row(p, i) - centres[i / 642]).norm() - 1.0, 2);
+        return std::sqrt(sum / p.rows());
+    };
+    const fairing::Result chosen = fairing::fair(m, {}, automatic(Operator::CurvatureFlow, 1));
+    double best = error(m.positions);
+    for (double t = 1; t < 1e4; t *= 1.5) {
+        Options o = automatic(Operator::CurvatureFlow, 1);
+        o.time_step = t;
+        best = std::min(best, error(fairing::fair(m, {}, o).positions));
+    }
+    EXPECT_LT(error(chosen.positions), 1.05 * best) << "time step " << chosen.time_step;
+    for (const fairing::ComponentReport& c : chosen.components)
+        EXPECT_NEAR(c.measure_after, c.measure_before, 1e-9 * c.measure_before);
+}
+
 // Several recomputed steps (auto_strength.h, "Several steps"): after the first, the weights come
 // from a smoother mesh, and a sphere is then hardly damaged by the curvature flow. Modelled with
 // the first step's operator for every step, four curvature-flow L^2 steps (the filter's default)
