@@ -221,6 +221,14 @@ int main(int argc, char** argv) {
         if (cmd == "make" && argc == 5) {
             const std::string what = argv[2];
             const long long n = std::atoll(argv[3]);
+            // sphere2 takes a subdivision level (5: 51 k faces, each level 4x), plane a grid
+            // size, torus a face count: a face count given as a level asked for 4^25000 faces.
+            const long long most = what == "sphere2" ? 9 : what == "plane" ? 4000 : 100000000;
+            if (n < 1 || n > most) {
+                std::cerr << "make " << what << ": " << argv[3] << " is out of range 1.." << most
+                          << (what == "sphere2" ? " (a subdivision level)" : "") << "\n";
+                return 2;
+            }
             if (what == "sphere2") write_ply(argv[4], sphere_two_densities(int(n)));
             else if (what == "plane") write_ply(argv[4], flat_patch(int(n)));
             else if (what == "torus") write_ply(argv[4], torus_faces(n));
