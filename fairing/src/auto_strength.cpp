@@ -936,9 +936,10 @@ private:
     // shrinks it by a quarter of its radius at time step 316, had a sketched RSS_n falling from
     // 0.78 at 79 to 0.22 at 316 and chose 316 (3.2x the best fixed step's error); formed in the
     // sketch's space it chooses what the exact RSS_n chooses (bench/results/issue11/auto-gap.md
-    // section 13). Components past the kSketchedComponents largest, which shrink by no more and
-    // hold fewer vertices, keep the squared form: |n.r|^2 + (1 - beta)^2 |s|^2
-    // + 2 beta (1 - beta) s . n.r, or |n.r|^2 - 2 t 1 . n.r + t^2 N.
+    // section 13). Components past the kSketchedComponents largest keep the squared form,
+    // |n.r|^2 + (1 - beta)^2 |s|^2 + 2 beta (1 - beta) s . n.r or |n.r|^2 - 2 t 1 . n.r + t^2 N:
+    // their shrink stays in the sketched |n.r|^2, with its error (a bounded memory of two
+    // sketched fields per component; tests/engine: twenty spheres, four of them so).
     //
     // Why a shrink and not the linear volume V - a . n.r: a shrinking convex shape keeps more
     // volume than the linear term says (V (1 - 3 delta + 3 delta^2 - ...)), so beta came out too
