@@ -277,20 +277,36 @@ inline Mesh torus_faces(long long faces, unsigned seed = 7) {
     return torus(2 * nv, nv, seed);
 }
 
+// An undirected edge as one integer (the smaller index in the high half).
+inline uint64_t edge_key(int a, int b) { return (uint64_t(std::min(a, b)) << 32) | uint32_t(std::max(a, b)); }
+
+// The 1-to-4 split of every face of m into out.f, edge_vertex(a, b) giving the new vertex on
+// edge ab (called for each face's edges in order ab, bc, ca).
+template <class EdgeVertex>
+void split_faces_1_to_4(const Mesh& m, EdgeVertex&& edge_vertex, Mesh& out) {
+    out.f.reserve(m.f.size() * 4);
+    for (const auto& f : m.f) {
+        const int e0 = edge_vertex(f[0], f[1]), e1 = edge_vertex(f[1], f[2]), e2 = edge_vertex(f[2], f[0]);
+        out.f.push_back({f[0], e0, e2});
+        out.f.push_back({f[1], e1, e0});
+        out.f.push_back({f[2], e2, e1});
+        out.f.push_back({e0, e1, e2});
+    }
+}
+
 // Loop subdivision (one level). Boundary edges get the midpoint and boundary vertices stay put
 // (the benchmark meshes are closed).
 inline Mesh loop_subdivide(const Mesh& m) {
     const int n = int(m.v.size());
     std::unordered_map<uint64_t, int> edge_vertex;
     edge_vertex.reserve(m.f.size() * 2);
-    auto key = [](int a, int b) { return (uint64_t(std::min(a, b)) << 32) | uint32_t(std::max(a, b)); };
     // opposite corners per edge
     std::unordered_map<uint64_t, std::array<int, 2>> opp;
     opp.reserve(m.f.size() * 2);
     for (const auto& f : m.f)
         for (int k = 0; k < 3; ++k) {
-            auto it = opp.find(key(f[k], f[(k + 1) % 3]));
-            if (it == opp.end()) opp.emplace(key(f[k], f[(k + 1) % 3]), std::array<int, 2>{f[(k + 2) % 3], -1});
+            auto it = opp.find(edge_key(f[k], f[(k + 1) % 3]));
+            if (it == opp.end()) opp.emplace(edge_key(f[k], f[(k + 1) % 3]), std::array<int, 2>{f[(k + 2) % 3], -1});
             else it->second[1] = f[(k + 2) % 3];
         }
     Mesh out;
@@ -322,15 +338,7 @@ inline Mesh loop_subdivide(const Mesh& m) {
         edge_vertex[k] = int(out.v.size());
         out.v.push_back(p);
     }
-    out.f.reserve(m.f.size() * 4);
-    for (const auto& f : m.f) {
-        const int e0 = edge_vertex[key(f[0], f[1])], e1 = edge_vertex[key(f[1], f[2])],
-                  e2 = edge_vertex[key(f[2], f[0])];
-        out.f.push_back({f[0], e0, e2});
-        out.f.push_back({f[1], e1, e0});
-        out.f.push_back({f[2], e2, e1});
-        out.f.push_back({e0, e1, e2});
-    }
+    split_faces_1_to_4(m, [&](int a, int b) { return edge_vertex[edge_key(a, b)]; }, out);
     return out;
 }
 
@@ -339,24 +347,15 @@ inline Mesh loop_subdivide(const Mesh& m) {
 // (its obtuse and thin triangles) at four times the faces, where Loop subdivision evens them
 // out.
 inline Mesh midpoint_subdivide(const Mesh& m) {
-    auto key = [](int a, int b) { return (uint64_t(std::min(a, b)) << 32) | uint32_t(std::max(a, b)); };
     std::unordered_map<uint64_t, int> edge_vertex;
     edge_vertex.reserve(m.f.size() * 2);
     Mesh out;
     out.v = m.v;
-    const auto midpoint = [&](int a, int b) {
-        const auto [it, added] = edge_vertex.emplace(key(a, b), int(out.v.size()));
+    split_faces_1_to_4(m, [&](int a, int b) {
+        const auto [it, added] = edge_vertex.emplace(edge_key(a, b), int(out.v.size()));
         if (added) out.v.push_back(mul(add(m.v[a], m.v[b]), 0.5));
         return it->second;
-    };
-    out.f.reserve(m.f.size() * 4);
-    for (const auto& f : m.f) {
-        const int e0 = midpoint(f[0], f[1]), e1 = midpoint(f[1], f[2]), e2 = midpoint(f[2], f[0]);
-        out.f.push_back({f[0], e0, e2});
-        out.f.push_back({f[1], e1, e0});
-        out.f.push_back({f[2], e2, e1});
-        out.f.push_back({e0, e1, e2});
-    }
+    }, out);
     return out;
 }
 

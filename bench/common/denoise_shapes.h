@@ -84,7 +84,7 @@ inline bool is_closed(const Mesh& m) {
     for (const auto& f : m.f)
         for (int k = 0; k < 3; ++k) {
             const int a = f[k], b = f[(k + 1) % 3];
-            ++count[(uint64_t(std::min(a, b)) << 32) | uint32_t(std::max(a, b))];
+            ++count[edge_key(a, b)];
         }
     for (const auto& kv : count)
         if (kv.second != 2) return false;
@@ -117,7 +117,6 @@ inline Mesh sphere_two_densities(int level, unsigned seed = 3) {
     m.f = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
            {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
            {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
-    auto key = [](int a, int b) { return (uint64_t(std::min(a, b)) << 32) | uint32_t(std::max(a, b)); };
     auto project = [](V3 p) { return mul(p, 1.0 / norm(p)); };
     for (auto& p : m.v) p = project(p);
     // split: faces to refine fully; their edges get midpoints; other faces are closed red-green.
@@ -127,8 +126,8 @@ inline Mesh sphere_two_densities(int level, unsigned seed = 3) {
             if (full[i])
                 for (int k = 0; k < 3; ++k) {
                     const int a = m.f[i][k], b = m.f[i][(k + 1) % 3];
-                    if (mid.emplace(key(a, b), 0).second) {
-                        mid[key(a, b)] = int(m.v.size());
+                    if (mid.emplace(edge_key(a, b), 0).second) {
+                        mid[edge_key(a, b)] = int(m.v.size());
                         m.v.push_back(project(mul(add(m.v[a], m.v[b]), 0.5)));
                     }
                 }
@@ -136,7 +135,7 @@ inline Mesh sphere_two_densities(int level, unsigned seed = 3) {
         for (const auto& f : m.f) {
             int e[3], n = 0;
             for (int k = 0; k < 3; ++k) {
-                auto it = mid.find(key(f[k], f[(k + 1) % 3]));
+                auto it = mid.find(edge_key(f[k], f[(k + 1) % 3]));
                 e[k] = it == mid.end() ? -1 : it->second;
                 n += e[k] >= 0;
             }
