@@ -1347,7 +1347,7 @@ StrengthEstimate risk_minimum(const StrengthProblem& p, const Positions& normals
     // 1.036-1.039 -> 1.018-1.019; on fresh noise draws of the spheres, the torus and three scans
     // as well. With L^2 it oversmooths the torus at half an edge of noise (curvature L^2 x4
     // 1.003 / 1.165 / 1.200 -> 1.077 / 1.455 / 1.455 with the three probes; scale-dependent L^2
-    // x2, a default, 1.05 -> 1.18), so L^2 keeps the minimizer (bench/results/issue11/
+    // x2, a default, 1.00-1.06 -> 1.06-1.18), so L^2 keeps the minimizer (bench/results/issue11/
     // auto-gap.md, section 14).
     choose(e, p.pilot && p.order == 1 && !p.explicit_integration);
     if (!ctx.weight_root.empty() && !uniform && e.trace_fraction < kWeightModelKeeps &&
