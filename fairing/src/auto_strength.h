@@ -59,8 +59,16 @@
 //   at a lightly smoothed copy of it (StrengthProblem::pilot; K and M are linear in the weights
 //   and masses, so the mean is one symmetric operator and one Lanczos process serves). The
 //   Monte-Carlo divergence perturbs the data and builds the same mean at the perturbed data.
+//   The mean overstates what strong steps cost on smooth shapes, where the risk is flat about its
+//   minimum: for several first-order steps the choice is the strongest step whose risk lies
+//   within one standard error of the minimum (Breiman et al.'s rule, auto_strength.cpp, choose);
+//   L^2 steps keep the minimizer.
 //
 // Limits: the several-step model is an approximation (bench/results/denoise.md measures it).
+// The Monte-Carlo divergence comes from one probe (a fixed one: the same mesh gives the same
+// choice); where the risk is flat the choice follows that probe's error, so on unseen meshes the
+// curvature flow's several-step choices spread more than the study's one draw shows
+// (bench/results/issue11/auto-gap.md, section 14).
 //
 // Conventions: lambda is the dimensionless time step of Options::time_step (C is scaled by the
 // operator's length unit); rows at or past `data_vertices` (virtual vertices) move with the
