@@ -93,10 +93,7 @@ QString FilterImplicitFairing::filterInfo(fairing_plugin::FilterId id) const
                   "normal by the mean curvature, so they do not slide over the surface and "
                   "spheres stay spheres and flat regions stay flat. <b>Pick it when only the shape "
                   "should change</b>, and for smooth shapes: on the two-density sphere at noise "
-                  "0.25 edge it reached 0.023 edge (CGAL's smooth_shape at its best: 0.027). "
-                  "On such shapes its automatic time step errs on the weak side (on spheres up "
-                  "to 1.4 times the best step's error): if noise remains, give a larger time "
-                  "step.");
+                  "0.25 edge it reached 0.023 edge (CGAL's smooth_shape at its best: 0.027).");
         break;
     }
     return what + tr(
