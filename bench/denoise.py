@@ -421,14 +421,13 @@ def main():
                                            for m in meshes], noises=NOISES, failures=failures,
                 full_rows="$FAIRING_CACHE/denoise-runs/" + os.path.basename(rows_path))
     # every row (results/denoise.jsonl is the report's extract); never the file --peers-from reads
-    path = rows_path
-    with open(path, "w") as f:
+    with open(rows_path, "w") as f:
         f.write(json.dumps(dict(meta=meta)) + "\n")
         for r in rows:
             f.write(json.dumps(r, ensure_ascii=False) + "\n")
-    log("%d rows in %s; %d failures" % (len(rows), path, len(failures)))
+    log("%d rows in %s; %d failures" % (len(rows), rows_path, len(failures)))
     subprocess.run([sys.executable, os.path.join(root, "bench", "denoise_report.py")]
-                   + ([a.auto_from] if a.auto_from and a.auto_from != "none" else []) + [path, results]
+                   + ([a.auto_from] if a.auto_from and a.auto_from != "none" else []) + [rows_path, results]
                    + (["--peers-from", a.peers_from] if a.peers_from else []), check=True)
 
 

@@ -48,6 +48,20 @@ Options automatic(Operator op, int order, int steps = 1) {
     return o;
 }
 
+// The lowest error of the input and of fixed time steps from, from * factor, ... below `to`
+// (o with its time step set): the best a user finds by sweeping.
+template <class Error>
+double best_fixed_step_error(const TriangleMesh& m, const fairing::Constraints& constraints,
+                             Options o, double from, double to, double factor,
+                             const Error& error) {
+    double best = error(m.positions);
+    for (double t = from; t < to; t *= factor) {
+        o.time_step = t;
+        best = std::min(best, error(fairing::fair(m, constraints, o).positions));
+    }
+    return best;
+}
+
 }  // namespace
 
 // The noise estimate (1.4826 x MAD of the normal bi-Laplacian over its stencil norm) recovers the
@@ -269,12 +283,9 @@ TEST(AutoStrength, NoiseDependentWeightsLandNearTheBestFixedStep) {
                 SCOPED_TRACE(testing::Message() << fairing::to_string(op) << " order " << order
                                                 << " steps " << steps);
                 const fairing::Result chosen = fairing::fair(m, {}, automatic(op, order, steps));
-                double best = sphere_error(m.positions);
-                for (double t = 1e-2; t < 1e5; t *= 2) {
-                    Options o = automatic(op, order, steps);
-                    o.time_step = t;
-                    best = std::min(best, sphere_error(fairing::fair(m, {}, o).positions));
-                }
+                const double best =
+                    best_fixed_step_error(m, {}, automatic(op, order, steps),
+                                          1e-2, 1e5, 2, sphere_error);
                 EXPECT_LT(sphere_error(chosen.positions), 1.25 * best)
                     << "time step " << chosen.time_step;
             }
@@ -297,12 +308,9 @@ TEST(AutoStrength, SketchedResidualOfALargeShrinkingSphere) {
     for (int order : {1, 2}) {
         SCOPED_TRACE(testing::Message() << "order " << order);
         const fairing::Result chosen = fairing::fair(m, {}, automatic(Operator::CurvatureFlow, order));
-        double best = sphere_error(m.positions);
-        for (double t = 1; t < 1e5; t *= 1.5) {
-            Options o = automatic(Operator::CurvatureFlow, order);
-            o.time_step = t;
-            best = std::min(best, sphere_error(fairing::fair(m, {}, o).positions));
-        }
+        const double best =
+            best_fixed_step_error(m, {}, automatic(Operator::CurvatureFlow, order),
+                                  1, 1e5, 1.5, sphere_error);
         EXPECT_LT(sphere_error(chosen.positions), 1.25 * best) << "time step " << chosen.time_step;
     }
 }
@@ -328,12 +336,9 @@ TEST(AutoStrength, ManyRestoredComponentsPastTheSketchedOnes) {
         return std::sqrt(sum / p.rows());
     };
     const fairing::Result chosen = fairing::fair(m, {}, automatic(Operator::CurvatureFlow, 1));
-    double best = error(m.positions);
-    for (double t = 1; t < 1e4; t *= 1.5) {
-        Options o = automatic(Operator::CurvatureFlow, 1);
-        o.time_step = t;
-        best = std::min(best, error(fairing::fair(m, {}, o).positions));
-    }
+    const double best =
+        best_fixed_step_error(m, {}, automatic(Operator::CurvatureFlow, 1),
+                              1, 1e4, 1.5, error);
     EXPECT_LT(error(chosen.positions), 1.05 * best) << "time step " << chosen.time_step;
     for (const fairing::ComponentReport& c : chosen.components)
         EXPECT_NEAR(c.measure_after, c.measure_before, 1e-9 * c.measure_before);
@@ -351,12 +356,9 @@ TEST(AutoStrength, SeveralRecomputedStepsLandNearTheBestFixedStep) {
         SCOPED_TRACE(testing::Message() << "noise " << noise);
         const TriangleMesh m = meshes::radial_noise(clean, noise * h * std::sqrt(3.0), 29);
         const fairing::Result chosen = fairing::fair(m, {}, automatic(Operator::CurvatureFlow, 2, 4));
-        double best = sphere_error(m.positions);
-        for (double t = 1e-1; t < 1e5; t *= 1.5) {
-            Options o = automatic(Operator::CurvatureFlow, 2, 4);
-            o.time_step = t;
-            best = std::min(best, sphere_error(fairing::fair(m, {}, o).positions));
-        }
+        const double best =
+            best_fixed_step_error(m, {}, automatic(Operator::CurvatureFlow, 2, 4),
+                                  1e-1, 1e5, 1.5, sphere_error);
         EXPECT_LT(sphere_error(chosen.positions), 1.15 * best) << "time step " << chosen.time_step;
     }
 }
@@ -378,12 +380,9 @@ TEST(AutoStrength, SeveralFirstOrderStepsTakeTheStrongestStepWithinTheRiskError)
         for (int draw = 0; draw < draws; ++draw) {
             const TriangleMesh m = meshes::radial_noise(clean, 0.25 * h * std::sqrt(3.0), 50 + draw);
             const fairing::Result chosen = fairing::fair(m, {}, automatic(op, 1, 4));
-            double best = sphere_error(m.positions);
-            for (double t = 1e-1; t < 1e3; t *= 1.25) {
-                Options o = automatic(op, 1, 4);
-                o.time_step = t;
-                best = std::min(best, sphere_error(fairing::fair(m, {}, o).positions));
-            }
+            const double best =
+                best_fixed_step_error(m, {}, automatic(op, 1, 4),
+                                      1e-1, 1e3, 1.25, sphere_error);
             const double ratio = sphere_error(chosen.positions) / best;
             log_ratio += std::log(ratio) / draws;
             worst = std::max(worst, ratio);
@@ -425,12 +424,9 @@ TEST(AutoStrength, VaryingWeightsOnASphereLandNearTheBestFixedStep) {
     for (int i = 0; i < m.positions.rows(); ++i)
         ramp.weights.push_back(std::min(1.0, std::max(0.2, 0.6 + 0.4 * m.positions(i, 2))));
     const fairing::Result chosen = fairing::fair(m, ramp, automatic(Operator::CurvatureFlow, 2));
-    double best = sphere_error(m.positions);
-    for (double t = 1; t < 1e5; t *= 1.5) {
-        Options o = automatic(Operator::CurvatureFlow, 2);
-        o.time_step = t;
-        best = std::min(best, sphere_error(fairing::fair(m, ramp, o).positions));
-    }
+    const double best =
+        best_fixed_step_error(m, ramp, automatic(Operator::CurvatureFlow, 2),
+                              1, 1e5, 1.5, sphere_error);
     EXPECT_LT(sphere_error(chosen.positions), 1.1 * best) << "time step " << chosen.time_step;
 }
 
