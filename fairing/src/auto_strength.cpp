@@ -294,32 +294,42 @@ constexpr double kCancelled = 1e-5;
 // (D-inner products), so advance()'s pass over four vectors per process is gone; the vector is
 // formed where it is first read (Lanczos::pending). The expansion cancels when beta_j is small
 // against |w'|: then the vector is formed and measured directly (measure_pending()).
-void step_pair(Context& ca, Lanczos& a, Context& cb, Lanczos& b, int j) {
+// With three processes (the later steps' movement beside them, see search()) the third reads
+// its own weights along the same columns.
+template <int K>
+void step_group(const std::array<Context*, K>& cs, const std::array<Lanczos*, K>& ls, int j) {
+    const Context& ca = *cs[0];
     const SparseOperator& op = *ca.c.op;
     const int n = op.size();
-    Context* cs[2] = {&ca, &cb};
-    Lanczos* ls[2] = {&a, &b};
-    const double* xs[2] = {a.current.data(), b.current.data()};
-    double* ws[2] = {a.previous.data(), b.previous.data()};
-    const double* ds[2] = {ca.c.diagonal.empty() ? nullptr : ca.c.diagonal.data(),
-                           cb.c.diagonal.empty() ? nullptr : cb.c.diagonal.data()};
-    const double* weights[2] = {weights_of(op), weights_of(*cb.c.op)};
-    const double* mass[2] = {ca.p.op->mass.data(), cb.p.op->mass.data()};
-    const double* soft[2] = {ca.p.weight ? ca.p.weight->data() : nullptr,
-                             cb.p.weight ? cb.p.weight->data() : nullptr};
-    const int data[2] = {ca.p.data_vertices, cb.p.data_vertices};
+    const double* xs[K];
+    double* ws[K];
+    const double* ds[K];
+    const double* weights[K];
+    const double* mass[K];
+    const double* soft[K];
+    int data[K];
+    double scales[K];  // order 1: A = D - lambda_dt K
+    for (int k = 0; k < K; ++k) {
+        const Context& ck = *cs[k];
+        xs[k] = ls[k]->current.data();
+        ws[k] = ls[k]->previous.data();
+        ds[k] = ck.c.diagonal.empty() ? nullptr : ck.c.diagonal.data();
+        weights[k] = weights_of(*ck.c.op);
+        mass[k] = ck.p.op->mass.data();
+        soft[k] = ck.p.weight ? ck.p.weight->data() : nullptr;
+        data[k] = ck.p.data_vertices;
+        scales[k] = -ck.c.lambda_dt;
+    }
     const char* f = ca.p.free->data();
     const int* start = op.row_start.data();
     const int* column = op.column.data();
-    // Order 1: A = D - lambda_dt K.
-    const double scales[2] = {-ca.c.lambda_dt, -cb.c.lambda_dt};
-    std::array<std::array<double, 3>, 2> beta_before{};
-    for (int k = 0; k < 2; ++k)
+    std::array<std::array<double, 3>, K> beta_before{};
+    for (int k = 0; k < K; ++k)
         for (int c = 0; c < 3; ++c)
             beta_before[k][c] = ls[k]->active[c] && j > 0 ? ls[k]->beta[c][j - 1] : 0.0;
     // Per process and column: alpha, |w'|^2, <w', v>, |v|^2.
-    const std::array<double, 24> sums = blocked_sum<24>(n, op.threads, [=](int i, double* sum) {
-        for (int k = 0; k < 2; ++k) {
+    const auto sums = blocked_sum<12 * K>(n, op.threads, [=](int i, double* sum) {
+        for (int k = 0; k < K; ++k) {
             double s0, s1, s2, y[3];
             k_row(i, xs[k], start, column, weights[k], s0, s1, s2);
             const double* x = xs[k] + 3 * i;
@@ -336,7 +346,7 @@ void step_pair(Context& ca, Lanczos& a, Context& cb, Lanczos& b, int j) {
             }
         }
     });
-    for (int k = 0; k < 2; ++k) {
+    for (int k = 0; k < K; ++k) {
         Lanczos& l = *ls[k];
         bool cancelled = false;
         std::array<double, 3> squared{{0, 0, 0}};
@@ -355,6 +365,10 @@ void step_pair(Context& ca, Lanczos& a, Context& cb, Lanczos& b, int j) {
         if (cancelled) squared = measure_pending(*cs[k], l);
         finish_step(l, j, squared);
     }
+}
+
+void step_pair(Context& ca, Lanczos& a, Context& cb, Lanczos& b, int j) {
+    step_group<2>({{&ca, &cb}}, {{&a, &b}}, j);
 }
 
 // Whether step_pair serves the processes of contexts a and b (one check per search: it
@@ -572,11 +586,18 @@ constexpr int kPilotPasses = 2;
 // With StrengthProblem::pilot, `first` (the operator at x) becomes the steps' mean operator:
 // one step on it, s - 1 on the operator at x's data rows smoothed (virtual vertices as they
 // are). K and M are linear in the weights and masses, so the mean is one symmetric operator.
-void model_steps(const StrengthProblem& p, const Positions& x, SparseOperator& first) {
-    if (!p.pilot) return;
+// The operator of the later steps: assembled at x's data rows smoothed (virtual vertices as they
+// are); `first` (the operator at x) gives the one-rings.
+SparseOperator later_operator(const StrengthProblem& p, const Positions& x,
+                              const SparseOperator& first) {
     Positions smooth = x;
     smooth.topRows(p.data_vertices) = smoothed_copy(first, x, p.data_vertices, kPilotPasses);
-    const SparseOperator later = p.assemble_at(smooth);
+    return p.assemble_at(smooth);
+}
+
+void model_steps(const StrengthProblem& p, const Positions& x, SparseOperator& first) {
+    if (!p.pilot) return;
+    const SparseOperator later = later_operator(p, x, first);
     if (later.column != first.column || later.row_start != first.row_start) return;
     const double share = (p.steps - 1.0) / p.steps;
     for (std::size_t k = 0; k < first.weight.size(); ++k)
@@ -1095,10 +1116,21 @@ Curves checkpoint(const Context& ctx, const Lanczos& u, const Lanczos& z, const 
     return now;
 }
 
+// The movement on the later steps' operator alone (StrengthProblem::residual_on_later_steps):
+// its own process and sketch, stepped beside the others.
+struct LaterSteps {
+    StrengthProblem problem;
+    std::unique_ptr<Context> ctx;
+    Lanczos u;
+    std::unique_ptr<Sketch> sketch;
+    bool paired = false;  // steps in step_group with the movement and the perturbed movement
+};
+
 // Runs both Lanczos processes, with the sketched risk at checkpoints, until the risk's
-// minimizer has settled inside the converged part of the curves.
+// minimizer has settled inside the converged part of the curves. `later` (optional) steps
+// along, as many steps as the movement; its curve does not take part in the stopping rule.
 Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sketch,
-              const Positions& normals, double count, double sigma) {
+              const Positions& normals, double count, double sigma, LaterSteps* later = nullptr) {
     Search s;
     s.count = count;
     const double top = ctx.p.explicit_integration ? std::min(ctx.p.max_time_step, 1e7) : 1e7;
@@ -1126,15 +1158,22 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sk
         if (u_active || (second && partner_active))
             sketch.add(u, normals, free, ctx.p.op->threads, mc ? &mc->sign : nullptr,
                        mc ? &mc->w : nullptr, second, mc && second ? &mc->w_perturbed : nullptr);
+        const bool later_active =
+            later && (later->u.active[0] || later->u.active[1] || later->u.active[2]);
+        if (later_active) later->sketch->add(later->u, normals, free, ctx.p.op->threads);
         // Paired, both products come from step_pair even when one process has broken down
         // (the perturbed operator has given its pattern back: apply_dot cannot run on it).
-        if (paired && (u_active || partner_active)) {
+        if (paired && later && later->paired && (u_active || partner_active || later_active)) {
+            step_group<3>({{&ctx, partner_ctx, later->ctx.get()}}, {{&u, &partner, &later->u}}, j);
+        } else if (paired && (u_active || partner_active)) {
             step_pair(ctx, u, *partner_ctx, partner, j);
         } else {
             if (u_active) step(ctx, u, j, product, true);
             if (z_active) step(ctx, z, j, product);
             if (mc_active) step(*mc->ctx, mc->u, j, product, true);
         }
+        if (later_active && !(paired && later->paired))
+            step(*later->ctx, later->u, j, product, true);
         if (ctx.p.progress) ctx.p.progress(0.7 * (1 - 16.0 / (16.0 + j)));
         const bool exhausted =
             !(u.active[0] || u.active[1] || u.active[2] ||
@@ -1255,7 +1294,8 @@ Sketch::Restoration restoration(const StrengthProblem& p, const Positions& norma
 constexpr int kSmoothingPasses = 4;
 
 StrengthEstimate risk_minimum(const StrengthProblem& p, const Positions& normals, StrengthEstimate e,
-                              bool model_weights = true, SparseOperator* assembled = nullptr);
+                              bool model_weights = true, SparseOperator* assembled = nullptr,
+                              SparseOperator* later_op = nullptr);
 
 StrengthEstimate estimate_strength(const StrengthProblem& p) {
     StrengthEstimate e;
@@ -1277,13 +1317,26 @@ StrengthEstimate estimate_strength(const StrengthProblem& p) {
     StrengthProblem q = p;
     q.op = usable ? &model : p.op;  // else (a row lost its mass) the first step's operator
     q.pilot = usable;
-    return risk_minimum(q, normals, e);
+    // L^2 steps of the curvature flow: the residual from the later steps' operator alone
+    // (header, "Several steps").
+    SparseOperator later;
+    if (usable && p.residual_on_later_steps && p.order == 2 && !p.explicit_integration &&
+        !p.weight) {
+        later = later_operator(p, *p.x, *p.op);
+        bool same = later.column == p.op->column && later.row_start == p.op->row_start;
+        for (int i = 0; i < later.size() && same; ++i) same = !(*p.free)[i] || later.mass[i] > 0;
+        if (!same) later = SparseOperator();
+    }
+    return risk_minimum(q, normals, e, true, nullptr, later.size() > 0 ? &later : nullptr);
 }
 
 // The risk curve of problem p (noise level in e) and its minimizer. With soft weights, L^2 runs
 // on the model of Context::weight_root unless !model_weights; `assembled` goes to perturb().
+// `later_op` (same rows and columns as p's operator, L^2 without soft weights): the residual
+// comes from the movement on it, the divergence from p's (header, "Several steps").
 StrengthEstimate risk_minimum(const StrengthProblem& p, const Positions& normals, StrengthEstimate e,
-                              bool model_weights, SparseOperator* assembled) {
+                              bool model_weights, SparseOperator* assembled,
+                              SparseOperator* later_op) {
     const StrengthEstimate given = e;
     Context ctx{p, LinearSystem{}, {}, Positions(), p.op->size(), false, {}, Positions()};
     ctx.c.op = p.op;
@@ -1326,7 +1379,26 @@ StrengthEstimate risk_minimum(const StrengthProblem& p, const Positions& normals
     if (mc) z.active = {{false, false, false}};  // the divergence replaces the probes
     else start_probes(ctx, z, count);
     Sketch sketch(ctx, static_cast<int>(count), restoration(p, normals));
-    const Search found = search(ctx, u, z, mc.get(), sketch, normals, count, e.noise_level);
+    std::unique_ptr<LaterSteps> later;
+    if (later_op && ctx.squared && ctx.weight_root.empty()) {
+        later = std::make_unique<LaterSteps>();
+        later->problem = p;
+        later->problem.op = later_op;
+        later_op->threads = p.op->threads;
+        later->ctx.reset(new Context{later->problem, ctx.c, ctx.data, Positions(), ctx.n,
+                                     ctx.squared, {}, Positions()});
+        later->ctx->c.op = later_op;
+        start_movement(*later->ctx, later->u);
+        later->sketch = std::make_unique<Sketch>(*later->ctx, static_cast<int>(count),
+                                                 restoration(p, normals));
+        later->paired = mc && mc->paired && pairable(ctx, *later->ctx);
+        if (later->paired) {  // step_group reads the columns from p's operator
+            std::vector<int>().swap(later_op->row_start);
+            std::vector<int>().swap(later_op->column);
+        }
+    }
+    const Search found =
+        search(ctx, u, z, mc.get(), sketch, normals, count, e.noise_level, later.get());
     e.lanczos_steps = static_cast<int>(
         std::max({u.alpha[0].size(), u.alpha[1].size(), u.alpha[2].size()}));
     e.capped = found.capped;
@@ -1336,6 +1408,7 @@ StrengthEstimate risk_minimum(const StrengthProblem& p, const Positions& normals
     for (int g = 0; g < kGrid; ++g) e.grid.push_back(lo * std::pow(hi / lo, g / (kGrid - 1.0)));
     std::vector<double> gain;
     e.rss = sketch.rss(ctx, u, e.grid, 0, e.grid.size(), &gain);
+    if (later) e.rss = later->sketch->rss(*later->ctx, later->u, e.grid, 0, e.grid.size());
     e.trace = mc ? divergences(ctx, u, *mc, count, e.grid) : traces(ctx, z, count, e.grid);
     for (std::size_t g = 0; g < e.grid.size(); ++g) e.trace[g] *= gain[g];
     // Several recomputed first-order steps: their mean-operator model keeps the first step's

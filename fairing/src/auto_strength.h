@@ -62,13 +62,26 @@
 //   The mean overstates what strong steps cost on smooth shapes, where the risk is flat about its
 //   minimum: for several first-order steps the choice is the strongest step whose risk lies
 //   within one standard error of the minimum (Breiman et al.'s rule, auto_strength.cpp, choose);
-//   L^2 steps keep the minimizer.
+//   L^2 steps keep the minimizer. For the curvature flow's L^2 steps the two halves of the risk
+//   are split: the residual (what the steps do to the shape) comes from the later steps'
+//   operator alone, since their smoother weights undo the damage the first step's noisy ones do
+//   to a smooth shape; the divergence (how the steps respond to the noise) from the mean
+//   operator, whose first share carries the weights' dependence on the noise. One more
+//   Lanczos process (the movement on the later operator, with its own sketch) steps beside the
+//   other two in their pass over the operator's pattern, as many steps as they take: on the
+//   1 M-face torus the curvature flow's one-click estimate costs 1.9 of its steps instead of
+//   1.3, and about 140 more bytes per vertex (bench/results/issue11/auto-gap.md, section 15).
 //
 // Limits: the several-step model is an approximation (bench/results/denoise.md measures it).
 // The Monte-Carlo divergence comes from one probe (a fixed one: the same mesh gives the same
 // choice); where the risk is flat the choice follows that probe's error, so on unseen meshes the
 // curvature flow's several-step choices spread more than the study's one draw shows
-// (bench/results/issue11/auto-gap.md, section 14).
+// (bench/results/issue11/auto-gap.md, section 14). The noise level's median absolute deviation
+// assumes Gaussian noise: for uniform noise it runs 10-14 % high, and the choices are stronger
+// than the best (the curvature flow's four L^2 steps on a 13 k-face sphere with uniform radial
+// noise: 1.5-1.8x the best fixed step, 1.04-1.18x its error). A trimmed second moment (within
+// three such deviations) is right for both, but made the scans' choices worse (the umbrella's
+// L^2 x4 worst case 1.038 -> 1.059 of the best error; auto-gap.md, section 15): not used.
 //
 // Conventions: lambda is the dimensionless time step of Options::time_step (C is scaled by the
 // operator's length unit); rows at or past `data_vertices` (virtual vertices) move with the
@@ -114,6 +127,10 @@ struct StrengthProblem {
     // Several steps that recompute those weights (steps >= 2, not frozen): model them on the
     // steps' mean operator ("Several steps" above). Needs assemble_at.
     bool pilot = false;
+    // With pilot, for L^2 steps: the residual from the later steps' operator alone, the
+    // divergence from the mean ("Several steps" above). fair() sets it for the curvature flow,
+    // whose cotangent weights the noise moves most.
+    bool residual_on_later_steps = false;
 };
 
 struct StrengthEstimate {

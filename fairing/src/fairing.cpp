@@ -576,6 +576,7 @@ void Run::choose_time_step() {
     problem.order = options_.order;
     problem.steps = std::max(1, options_.steps);
     problem.pilot = assembles_again();  // the steps recompute the weights of the positions
+    problem.residual_on_later_steps = options_.op == Operator::CurvatureFlow;
     problem.explicit_integration = options_.integration == Integration::Explicit;
     // Explicit: at most half the first step's stability bound. At the bound the highest mode
     // flips sign undamped, and later steps on recomputed operators have lower bounds.

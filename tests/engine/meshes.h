@@ -51,6 +51,11 @@ struct Rng {
     double uniform() { return static_cast<double>(next() >> 11) * (1.0 / 9007199254740992.0); }
     // Uniform in [-1, 1).
     double symmetric() { return 2.0 * uniform() - 1.0; }
+    // Standard normal (Box-Muller; one draw per call).
+    double normal() {
+        const double u = 1.0 - uniform();  // in (0, 1]: a finite logarithm
+        return std::sqrt(-2.0 * std::log(u)) * std::cos(6.283185307179586 * uniform());
+    }
 };
 
 inline Vec3 row(const Positions& p, int i) { return p.row(i).transpose(); }
@@ -341,6 +346,18 @@ inline TriangleMesh radial_noise(TriangleMesh m, double amplitude, std::uint64_t
     for (int i = 0; i < m.positions.rows(); ++i) {
         const Vec3 p = row(m.positions, i) - center;
         set_row(m.positions, i, center + p * (1.0 + amplitude * rng.symmetric()));
+    }
+    return m;
+}
+
+// Moves every vertex along its direction from `center` by Gaussian noise of standard deviation
+// sigma (the study's noise along the normals, on a sphere about its centre).
+inline TriangleMesh gaussian_radial_noise(TriangleMesh m, double sigma, std::uint64_t seed = 3,
+                                          const Vec3& center = Vec3::Zero()) {
+    Rng rng(seed);
+    for (int i = 0; i < m.positions.rows(); ++i) {
+        const Vec3 p = row(m.positions, i) - center;
+        set_row(m.positions, i, center + p + sigma * rng.normal() * p.normalized());
     }
     return m;
 }
