@@ -295,9 +295,19 @@ constexpr double kCancelled = 1e-5;
 // formed where it is first read (Lanczos::pending). The expansion cancels when beta_j is small
 // against |w'|: then the vector is formed and measured directly (measure_pending()).
 // With three processes (the later steps' movement beside them, see search()) the third reads
-// its own weights along the same columns.
-template <int K>
-void step_group(const std::array<Context*, K>& cs, const std::array<Lanczos*, K>& ls, int j) {
+// its own weights along the same columns, or, with a Blend, forms them from two operators' (the
+// mean's and the first step's, which the pass reads anyway: the later operator's weights need
+// not be kept).
+struct Blend {
+    const double* a = nullptr;
+    const double* b = nullptr;
+    double ca = 0, cb = 0;
+    double operator[](int e) const { return ca * a[e] + cb * b[e]; }
+};
+
+template <int K, bool BlendLast = false>
+void step_group(const std::array<Context*, K>& cs, const std::array<Lanczos*, K>& ls, int j,
+                const Blend& blend = Blend{}) {
     const Context& ca = *cs[0];
     const SparseOperator& op = *ca.c.op;
     const int n = op.size();
@@ -331,7 +341,8 @@ void step_group(const std::array<Context*, K>& cs, const std::array<Lanczos*, K>
     const auto sums = blocked_sum<12 * K>(n, op.threads, [=](int i, double* sum) {
         for (int k = 0; k < K; ++k) {
             double s0, s1, s2, y[3];
-            k_row(i, xs[k], start, column, weights[k], s0, s1, s2);
+            if (BlendLast && k == K - 1) k_row_with(i, xs[k], start, column, blend, s0, s1, s2);
+            else k_row(i, xs[k], start, column, weights[k], s0, s1, s2);
             const double* x = xs[k] + 3 * i;
             system_row(ds[k] ? ds[k][i] : 0.0, scales[k], x, s0, s1, s2, f[i] != 0, y, sum + 12 * k);
             if (!f[i]) continue;
@@ -803,18 +814,17 @@ public:
     // own, these took 15 % of perf's samples of an automatic scale-dependent L^2 step on the
     // 1 M-face torus with two threads; the partner's functionals, a pass of their own, 6 % with
     // one thread.)
+    // With `twin` (a sketch of the same data rows and restoration: the same buckets and fields)
+    // and its process twin_u, the twin's basis vector goes into the twin in the same pass, with
+    // the same sums as a pass of its own would make.
     void add(Lanczos& u, const Positions& normals, const char* free, int threads,
              const std::vector<signed char>* probe = nullptr,
              std::array<std::vector<double>, 3>* probed = nullptr, Lanczos* partner = nullptr,
-             std::array<std::vector<double>, 3>* partner_probed = nullptr) {
-        std::array<Eigen::Index, 3> slot{{-1, -1, -1}};
-        for (int c = 0; c < 3; ++c) {
-            if (!u.active[c]) continue;
-            if (used_ == static_cast<Eigen::Index>(blocks_.size()) * kSketchBlock)
-                blocks_.emplace_back(Eigen::MatrixXd::Zero(rows_, kSketchBlock));
-            index_[c].push_back(static_cast<int>(used_));
-            slot[c] = used_++;
-        }
+             std::array<std::vector<double>, 3>* partner_probed = nullptr, Sketch* twin = nullptr,
+             Lanczos* twin_u = nullptr) {
+        const std::array<Eigen::Index, 3> slot = open_columns(u);
+        const std::array<Eigen::Index, 3> twin_slot =
+            twin ? twin->open_columns(*twin_u) : std::array<Eigen::Index, 3>{{-1, -1, -1}};
         const int nc = restoration_.components;
         const int n = static_cast<int>(bucket_.size());
         // Many restored components (each chunk holds nine sums per component): one chunk.
@@ -823,6 +833,7 @@ public:
         const std::size_t buckets = 3 * static_cast<std::size_t>(rows_);
         const std::size_t stride = buckets + 9 * static_cast<std::size_t>(nc) + 6;
         chunk_sums_.assign(chunks * stride, 0.0);
+        if (twin) twin->chunk_sums_.assign(chunks * stride, 0.0);
         const int* bucket = bucket_.data();
         const float* sign = sign_.data();
         const int* component = restoration_.component.data();
@@ -833,15 +844,19 @@ public:
         const double* nv = normals.data();
         double* v = u.current.data();
         double* v_partner = partner ? partner->current.data() : nullptr;
+        double* v_twin = twin ? twin_u->current.data() : nullptr;
         const std::array<bool, 3> partner_active =
             partner ? partner->active : std::array<bool, 3>{{false, false, false}};
         double* sums = chunk_sums_.data();
+        double* twin_sums = twin ? twin->chunk_sums_.data() : nullptr;
         (void)threads;
         FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1 && chunks > 1))
         for (int chunk = 0; chunk < chunks; ++chunk) {
             double* to_bucket = sums + chunk * stride;
             double* to_component = to_bucket + buckets;
             double* to_probe = to_component + 9 * static_cast<std::size_t>(nc);
+            double* twin_bucket = twin_sums ? twin_sums + chunk * stride : nullptr;
+            double* twin_component = twin_bucket ? twin_bucket + buckets : nullptr;
             const int end = std::min(n, (chunk + 1) * per_chunk);
             for (int i = chunk * per_chunk; i < end; ++i) {
                 const int b = bucket[i];
@@ -855,48 +870,32 @@ public:
                         if (bi != 0 && partner_active[c]) to_probe[3 + c] += bi * nv[3 * i + c] * vc;
                     }
                 }
-                if (b < 0 && k < 0 && bi == 0) continue;
-                for (int c = 0; c < 3; ++c) {
-                    if (slot[c] < 0) continue;
-                    const double nv_c = nv[3 * i + c] * vi[c];
-                    if (b >= 0) to_bucket[3 * b + c] += static_cast<double>(sign[i]) * nv_c;
-                    if (bi != 0) to_probe[c] += bi * nv_c;
-                    if (k < 0) continue;
-                    to_component[9 * k + c] += area[i] * nv_c;
-                    to_component[9 * k + 3 + c] += field[i] * nv_c;
-                    to_component[9 * k + 6 + c] += nv_c;
+                if (v_twin) {
+                    double ti[3];
+                    for (int c = 0; c < 3; ++c) ti[c] = settle(*twin_u, free, v_twin, i, c);
+                    if (b >= 0 || k >= 0)
+                        accumulate(twin_slot, b, k, sign[i], k >= 0 ? area[i] : 0.0,
+                                   k >= 0 ? field[i] : 0.0, nv + 3 * i, ti, twin_bucket,
+                                   twin_component, nullptr, 0);
                 }
+                if (b < 0 && k < 0 && bi == 0) continue;
+                accumulate(slot, b, k, sign[i], k >= 0 ? area[i] : 0.0, k >= 0 ? field[i] : 0.0,
+                           nv + 3 * i, vi, to_bucket, to_component, to_probe, bi);
             }
         }
         u.pending = false;
         if (partner) partner->pending = false;
-        std::array<std::vector<double>, 3> by_volume, by_field, by_sum;
-        std::array<double, 3> probe_sum{{0, 0, 0}}, partner_sum{{0, 0, 0}};
-        for (int c = 0; c < 3; ++c) by_volume[c].assign(slot[c] >= 0 ? nc : 0, 0.0);
-        by_field = by_sum = by_volume;
-        for (int chunk = 0; chunk < chunks; ++chunk) {
-            const double* from_bucket = sums + chunk * stride;
-            const double* from_component = from_bucket + buckets;
-            const double* from_probe = from_component + 9 * static_cast<std::size_t>(nc);
-            for (int c = 0; c < 3; ++c) {
-                if (slot[c] < 0) continue;
-                double* column = column_data(slot[c]);
-                for (int b = 0; b < rows_; ++b) column[b] += from_bucket[3 * b + c];
-                for (int k = 0; k < nc; ++k) {
-                    by_volume[c][k] += from_component[9 * k + c];
-                    by_field[c][k] += from_component[9 * k + 3 + c];
-                    by_sum[c][k] += from_component[9 * k + 6 + c];
-                }
-                probe_sum[c] += from_probe[c];
-            }
-            for (int c = 0; c < 3; ++c) partner_sum[c] += from_probe[3 + c];
+        const std::array<double, 3> probe_sum = close_columns(slot, chunks, stride, sums);
+        if (twin) {
+            twin_u->pending = false;
+            twin->close_columns(twin_slot, chunks, stride, twin_sums);
         }
-        for (int c = 0; c < 3; ++c) {
-            if (slot[c] < 0) continue;
-            volume_part_.push_back(std::move(by_volume[c]));
-            field_part_.push_back(std::move(by_field[c]));
-            sum_part_.push_back(std::move(by_sum[c]));
-            if (probed) (*probed)[c].push_back(probe_sum[c]);
+        for (int c = 0; c < 3; ++c)
+            if (probed && slot[c] >= 0) (*probed)[c].push_back(probe_sum[c]);
+        std::array<double, 3> partner_sum{{0, 0, 0}};
+        for (int chunk = 0; chunk < chunks; ++chunk) {
+            const double* from_probe = sums + chunk * stride + buckets + 9 * static_cast<std::size_t>(nc);
+            for (int c = 0; c < 3; ++c) partner_sum[c] += from_probe[3 + c];
         }
         for (int c = 0; c < 3; ++c)
             if (partner_probed && partner_active[c]) (*partner_probed)[c].push_back(partner_sum[c]);
@@ -938,6 +937,68 @@ public:
     }
 
 private:
+    // A column per active column of process l for its current basis vector (-1: inactive).
+    std::array<Eigen::Index, 3> open_columns(const Lanczos& l) {
+        std::array<Eigen::Index, 3> slot{{-1, -1, -1}};
+        for (int c = 0; c < 3; ++c) {
+            if (!l.active[c]) continue;
+            if (used_ == static_cast<Eigen::Index>(blocks_.size()) * kSketchBlock)
+                blocks_.emplace_back(Eigen::MatrixXd::Zero(rows_, kSketchBlock));
+            index_[c].push_back(static_cast<int>(used_));
+            slot[c] = used_++;
+        }
+        return slot;
+    }
+    // One vertex's normal components n_c v_c into its bucket (b >= 0), its component's sums
+    // (k >= 0) and, with a probe sign bi, the probe's sums.
+    static void accumulate(const std::array<Eigen::Index, 3>& slot, int b, int k, float sign,
+                           double area, double field, const double* n, const double* v,
+                           double* to_bucket, double* to_component, double* to_probe, int bi) {
+        for (int c = 0; c < 3; ++c) {
+            if (slot[c] < 0) continue;
+            const double nv_c = n[c] * v[c];
+            if (b >= 0) to_bucket[3 * b + c] += static_cast<double>(sign) * nv_c;
+            if (bi != 0) to_probe[c] += bi * nv_c;
+            if (k < 0) continue;
+            to_component[9 * k + c] += area * nv_c;
+            to_component[9 * k + 3 + c] += field * nv_c;
+            to_component[9 * k + 6 + c] += nv_c;
+        }
+    }
+    // The chunks' sums added in chunk order into the columns of `slot` and their component
+    // parts; returns the probe's sums b n . v per column.
+    std::array<double, 3> close_columns(const std::array<Eigen::Index, 3>& slot, int chunks,
+                                        std::size_t stride, const double* sums) {
+        const int nc = restoration_.components;
+        const std::size_t buckets = 3 * static_cast<std::size_t>(rows_);
+        std::array<std::vector<double>, 3> by_volume, by_field, by_sum;
+        std::array<double, 3> probe_sum{{0, 0, 0}};
+        for (int c = 0; c < 3; ++c) by_volume[c].assign(slot[c] >= 0 ? nc : 0, 0.0);
+        by_field = by_sum = by_volume;
+        for (int chunk = 0; chunk < chunks; ++chunk) {
+            const double* from_bucket = sums + chunk * stride;
+            const double* from_component = from_bucket + buckets;
+            const double* from_probe = from_component + 9 * static_cast<std::size_t>(nc);
+            for (int c = 0; c < 3; ++c) {
+                if (slot[c] < 0) continue;
+                double* column = column_data(slot[c]);
+                for (int b = 0; b < rows_; ++b) column[b] += from_bucket[3 * b + c];
+                for (int k = 0; k < nc; ++k) {
+                    by_volume[c][k] += from_component[9 * k + c];
+                    by_field[c][k] += from_component[9 * k + 3 + c];
+                    by_sum[c][k] += from_component[9 * k + 6 + c];
+                }
+                probe_sum[c] += from_probe[c];
+            }
+        }
+        for (int c = 0; c < 3; ++c) {
+            if (slot[c] < 0) continue;
+            volume_part_.push_back(std::move(by_volume[c]));
+            field_part_.push_back(std::move(by_field[c]));
+            sum_part_.push_back(std::move(by_sum[c]));
+        }
+        return probe_sum;
+    }
     // RSS_n after the restoration, from the coefficients y of the basis vectors and the sketch of
     // n.r, and in `gain` the mean factor it multiplies the filtered noise by. Per component,
     // with V = (a . s) / 3 (the volume seen from the centroid) and the step's first-order volume
@@ -1118,12 +1179,15 @@ Curves checkpoint(const Context& ctx, const Lanczos& u, const Lanczos& z, const 
 
 // The movement on the later steps' operator alone (StrengthProblem::residual_on_later_steps):
 // its own process and sketch, stepped beside the others.
+// Always paired: it steps in step_group with the movement and the perturbed movement, its
+// weights (s w_mean - w_first) / (s - 1) formed in the pass (its operator keeps its masses only).
 struct LaterSteps {
+    SparseOperator op;
     StrengthProblem problem;
     std::unique_ptr<Context> ctx;
     Lanczos u;
     std::unique_ptr<Sketch> sketch;
-    bool paired = false;  // steps in step_group with the movement and the perturbed movement
+    Blend blend;
 };
 
 // Runs both Lanczos processes, with the sketched risk at checkpoints, until the risk's
@@ -1155,16 +1219,21 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sk
         // The pass of the sketch forms the pending basis vectors of u and of the second process
         // (Lanczos::pending): paired, both of step_pair's; else the perturbed movement's.
         Lanczos* second = paired ? &partner : mc_active ? &mc->u : nullptr;
-        if (u_active || (second && partner_active))
-            sketch.add(u, normals, free, ctx.p.op->threads, mc ? &mc->sign : nullptr,
-                       mc ? &mc->w : nullptr, second, mc && second ? &mc->w_perturbed : nullptr);
+        // The later steps' process goes into its own sketch in the same pass.
         const bool later_active =
             later && (later->u.active[0] || later->u.active[1] || later->u.active[2]);
-        if (later_active) later->sketch->add(later->u, normals, free, ctx.p.op->threads);
+        if (u_active || (second && partner_active))
+            sketch.add(u, normals, free, ctx.p.op->threads, mc ? &mc->sign : nullptr,
+                       mc ? &mc->w : nullptr, second, mc && second ? &mc->w_perturbed : nullptr,
+                       later_active ? later->sketch.get() : nullptr,
+                       later_active ? &later->u : nullptr);
+        else if (later_active)
+            later->sketch->add(later->u, normals, free, ctx.p.op->threads);
         // Paired, both products come from step_pair even when one process has broken down
         // (the perturbed operator has given its pattern back: apply_dot cannot run on it).
-        if (paired && later && later->paired && (u_active || partner_active || later_active)) {
-            step_group<3>({{&ctx, partner_ctx, later->ctx.get()}}, {{&u, &partner, &later->u}}, j);
+        if (paired && later && (u_active || partner_active || later_active)) {
+            step_group<3, true>({{&ctx, partner_ctx, later->ctx.get()}},
+                                {{&u, &partner, &later->u}}, j, later->blend);
         } else if (paired && (u_active || partner_active)) {
             step_pair(ctx, u, *partner_ctx, partner, j);
         } else {
@@ -1172,8 +1241,6 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sk
             if (z_active) step(ctx, z, j, product);
             if (mc_active) step(*mc->ctx, mc->u, j, product, true);
         }
-        if (later_active && !(paired && later->paired))
-            step(*later->ctx, later->u, j, product, true);
         if (ctx.p.progress) ctx.p.progress(0.7 * (1 - 16.0 / (16.0 + j)));
         const bool exhausted =
             !(u.active[0] || u.active[1] || u.active[2] ||
@@ -1295,7 +1362,7 @@ constexpr int kSmoothingPasses = 4;
 
 StrengthEstimate risk_minimum(const StrengthProblem& p, const Positions& normals, StrengthEstimate e,
                               bool model_weights = true, SparseOperator* assembled = nullptr,
-                              SparseOperator* later_op = nullptr);
+                              const SparseOperator* first_op = nullptr);
 
 StrengthEstimate estimate_strength(const StrengthProblem& p) {
     StrengthEstimate e;
@@ -1319,24 +1386,54 @@ StrengthEstimate estimate_strength(const StrengthProblem& p) {
     q.pilot = usable;
     // L^2 steps of the curvature flow: the residual from the later steps' operator alone
     // (header, "Several steps").
-    SparseOperator later;
-    if (usable && p.residual_on_later_steps && p.order == 2 && !p.explicit_integration &&
-        !p.weight) {
-        later = later_operator(p, *p.x, *p.op);
-        bool same = later.column == p.op->column && later.row_start == p.op->row_start;
-        for (int i = 0; i < later.size() && same; ++i) same = !(*p.free)[i] || later.mass[i] > 0;
-        if (!same) later = SparseOperator();
-    }
-    return risk_minimum(q, normals, e, true, nullptr, later.size() > 0 ? &later : nullptr);
+    const bool later = usable && p.residual_on_later_steps && p.order == 2 &&
+                       !p.explicit_integration && !p.weight;
+    return risk_minimum(q, normals, e, true, nullptr, later ? p.op : nullptr);
+}
+
+// The later steps' process for problem p (its operator the steps' mean, `first` the first
+// step's), or nothing where it cannot run paired (step_group) or its operator loses a mass.
+// Assembled after the perturbed problem, whose own assembly would otherwise peak beside it.
+std::unique_ptr<LaterSteps> later_steps(const StrengthProblem& p, const Context& ctx,
+                                        const Perturbation* mc, const SparseOperator& first,
+                                        const Positions& normals, double count) {
+    if (!mc || !mc->paired || p.steps < 2 || !weights_of(*p.op) || !weights_of(first) ||
+        first.column != p.op->column || first.row_start != p.op->row_start)
+        return nullptr;
+    auto later = std::make_unique<LaterSteps>();
+    later->op = later_operator(p, *p.x, *p.op);
+    SparseOperator& op = later->op;
+    if (op.column != p.op->column || op.row_start != p.op->row_start) return nullptr;
+    for (int i = 0; i < op.size(); ++i)
+        if ((*p.free)[i] && !(op.mass[i] > 0)) return nullptr;
+    op.threads = p.op->threads;
+    later->problem = p;
+    later->problem.op = &op;
+    later->ctx.reset(new Context{later->problem, ctx.c, ctx.data, Positions(), ctx.n, ctx.squared,
+                                 {}, Positions()});
+    later->ctx->c.op = &op;
+    if (!pairable(ctx, *later->ctx)) return nullptr;
+    start_movement(*later->ctx, later->u);
+    later->sketch = std::make_unique<Sketch>(*later->ctx, static_cast<int>(count),
+                                             restoration(p, normals));
+    // step_group reads the columns from p's operator and forms the weights from the mean's and
+    // the first step's: the later operator keeps its masses only.
+    const double s = p.steps;
+    later->blend = Blend{weights_of(*p.op), weights_of(first), s / (s - 1), -1 / (s - 1)};
+    std::vector<int>().swap(op.row_start);
+    std::vector<int>().swap(op.column);
+    std::vector<double>().swap(op.weight);
+    return later;
 }
 
 // The risk curve of problem p (noise level in e) and its minimizer. With soft weights, L^2 runs
 // on the model of Context::weight_root unless !model_weights; `assembled` goes to perturb().
-// `later_op` (same rows and columns as p's operator, L^2 without soft weights): the residual
-// comes from the movement on it, the divergence from p's (header, "Several steps").
+// With `first_op` (p's operator the steps' mean of it and the later steps', model_steps; L^2
+// without soft weights) the residual comes from the later steps' operator alone, the divergence
+// from p's (header, "Several steps").
 StrengthEstimate risk_minimum(const StrengthProblem& p, const Positions& normals, StrengthEstimate e,
                               bool model_weights, SparseOperator* assembled,
-                              SparseOperator* later_op) {
+                              const SparseOperator* first_op) {
     const StrengthEstimate given = e;
     Context ctx{p, LinearSystem{}, {}, Positions(), p.op->size(), false, {}, Positions()};
     ctx.c.op = p.op;
@@ -1379,24 +1476,10 @@ StrengthEstimate risk_minimum(const StrengthProblem& p, const Positions& normals
     if (mc) z.active = {{false, false, false}};  // the divergence replaces the probes
     else start_probes(ctx, z, count);
     Sketch sketch(ctx, static_cast<int>(count), restoration(p, normals));
-    std::unique_ptr<LaterSteps> later;
-    if (later_op && ctx.squared && ctx.weight_root.empty()) {
-        later = std::make_unique<LaterSteps>();
-        later->problem = p;
-        later->problem.op = later_op;
-        later_op->threads = p.op->threads;
-        later->ctx.reset(new Context{later->problem, ctx.c, ctx.data, Positions(), ctx.n,
-                                     ctx.squared, {}, Positions()});
-        later->ctx->c.op = later_op;
-        start_movement(*later->ctx, later->u);
-        later->sketch = std::make_unique<Sketch>(*later->ctx, static_cast<int>(count),
-                                                 restoration(p, normals));
-        later->paired = mc && mc->paired && pairable(ctx, *later->ctx);
-        if (later->paired) {  // step_group reads the columns from p's operator
-            std::vector<int>().swap(later_op->row_start);
-            std::vector<int>().swap(later_op->column);
-        }
-    }
+    const std::unique_ptr<LaterSteps> later =
+        first_op && ctx.squared && ctx.weight_root.empty()
+            ? later_steps(p, ctx, mc.get(), *first_op, normals, count)
+            : nullptr;
     const Search found =
         search(ctx, u, z, mc.get(), sketch, normals, count, e.noise_level, later.get());
     e.lanczos_steps = static_cast<int>(

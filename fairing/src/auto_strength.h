@@ -68,9 +68,10 @@
 //   to a smooth shape; the divergence (how the steps respond to the noise) from the mean
 //   operator, whose first share carries the weights' dependence on the noise. One more
 //   Lanczos process (the movement on the later operator, with its own sketch) steps beside the
-//   other two in their pass over the operator's pattern, as many steps as they take: on the
-//   1 M-face torus the curvature flow's one-click estimate costs 1.9 of its steps instead of
-//   1.3, and about 140 more bytes per vertex (bench/results/issue11/auto-gap.md, section 15).
+//   other two in their pass over the operator's pattern and their sketch's pass, as many steps
+//   as they take, its weights formed from the mean's and the first step's: on the 1 M-face
+//   torus the curvature flow's one-click estimate costs 1.8 of its steps instead of 1.2, its
+//   peak 92 more bytes per vertex (26 on a 10 M-face torus; auto-gap.md, section 15).
 //
 // Limits: the several-step model is an approximation (bench/results/denoise.md measures it).
 // The Monte-Carlo divergence comes from one probe (a fixed one: the same mesh gives the same
