@@ -414,7 +414,7 @@ def main():
         "-ours" if a.ours_only else "-auto" if a.auto_from else ""))
     meta = dict(date=time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), machine=platform.node(),
                 cores=os.cpu_count(), load_after=os.getloadavg(), minutes=(time.time() - started) / 60,
-                git=run(["git", "-C", root, "rev-parse", "--short", "HEAD"]).stdout.strip(),
+                git=run(["git", "-C", root, "describe", "--always", "--dirty", "--abbrev=7"]).stdout.strip(),
                 command="bench/denoise.sh" + (" --quick" if a.quick else "") + (" --only " + a.only if only else "")
                         + (" --ours-only" if a.ours_only else "") + (" --auto-from ..." if a.auto_from else ""),
                 auto_cli=auto_cli, auto_engine=auto_tool, task_minutes={k: round(v / 60, 2) for k, v in spent.items()}, meshes=[dict(name=m["name"], kind=dict(ALL_KIND)[m["name"]], truth=m["truth"], **m["info"])
