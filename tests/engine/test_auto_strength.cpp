@@ -14,6 +14,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <string>
+#include <utility>
 
 using fairing::BoundaryMode;
 using fairing::Operator;
@@ -554,14 +556,19 @@ TEST(AutoStrength, RobustNormalsFollowTheSurface) {
 // added in fixed blocks or serially, and its probes come from a hash of the vertex index, so the
 // automatic strength chooses bit for bit the same step, and gives bit for bit the same mesh, on
 // one and two threads (above the 50,000-vertex threshold of the parallel path), for the
-// umbrella (Hutchinson probes) and the curvature flow (Monte-Carlo divergence).
+// umbrella (Hutchinson probes), the curvature flow (Monte-Carlo divergence), and its four steps
+// (the later steps' process beside them, its sketch filled in the same pass).
 TEST(AutoStrength, BitIdenticalOnOneAndTwoThreads) {
     // 51,200 vertices: just above the threshold, to keep the test short.
     const TriangleMesh m = meshes::radial_noise(meshes::torus_grid(320, 160), 0.01);
     ASSERT_GE(m.positions.rows(), 50000);
-    for (Operator op : {Operator::Umbrella, Operator::CurvatureFlow}) {
-        SCOPED_TRACE(fairing::to_string(op));
-        Options o = automatic(op, 2);
+    const std::pair<Operator, int> cases[] = {
+        {Operator::Umbrella, 1}, {Operator::CurvatureFlow, 1}, {Operator::CurvatureFlow, 4}};
+    for (const auto& c : cases) {
+        const Operator op = c.first;
+        const int steps = c.second;
+        SCOPED_TRACE(std::string(fairing::to_string(op)) + " x" + std::to_string(steps));
+        Options o = automatic(op, 2, steps);
         o.threads = 1;
         const fairing::Result one = fairing::fair(m, {}, o);
         o.threads = 2;
