@@ -894,7 +894,8 @@ public:
             if (probed && slot[c] >= 0) (*probed)[c].push_back(probe_sum[c]);
         std::array<double, 3> partner_sum{{0, 0, 0}};
         for (int chunk = 0; chunk < chunks; ++chunk) {
-            const double* from_probe = sums + chunk * stride + buckets + 9 * static_cast<std::size_t>(nc);
+            const double* from_probe =
+                sums + chunk * stride + buckets + 9 * static_cast<std::size_t>(nc);
             for (int c = 0; c < 3; ++c) partner_sum[c] += from_probe[3 + c];
         }
         for (int c = 0; c < 3; ++c)
