@@ -1404,7 +1404,7 @@ std::unique_ptr<LaterSteps> later_steps(const StrengthProblem& p, const Context&
     auto later = std::make_unique<LaterSteps>();
     later->op = later_operator(p, *p.x, *p.op);
     SparseOperator& op = later->op;
-    if (op.column != p.op->column || op.row_start != p.op->row_start) return nullptr;
+    if (op.size() != p.op->size()) return nullptr;
     for (int i = 0; i < op.size(); ++i)
         if ((*p.free)[i] && !(op.mass[i] > 0)) return nullptr;
     op.threads = p.op->threads;
@@ -1413,7 +1413,7 @@ std::unique_ptr<LaterSteps> later_steps(const StrengthProblem& p, const Context&
     later->ctx.reset(new Context{later->problem, ctx.c, ctx.data, Positions(), ctx.n, ctx.squared,
                                  {}, Positions()});
     later->ctx->c.op = &op;
-    if (!pairable(ctx, *later->ctx)) return nullptr;
+    if (!pairable(ctx, *later->ctx)) return nullptr;  // also: the same rows and columns as p's
     start_movement(*later->ctx, later->u);
     later->sketch = std::make_unique<Sketch>(*later->ctx, static_cast<int>(count),
                                              restoration(p, normals));
@@ -1492,6 +1492,7 @@ StrengthEstimate risk_minimum(const StrengthProblem& p, const Positions& normals
     for (int g = 0; g < kGrid; ++g) e.grid.push_back(lo * std::pow(hi / lo, g / (kGrid - 1.0)));
     std::vector<double> gain;
     e.rss = sketch.rss(ctx, u, e.grid, 0, e.grid.size(), &gain);
+    // The later steps' residual replaces the mean's, whose pass gave the restoration's gain.
     if (later) e.rss = later->sketch->rss(*later->ctx, later->u, e.grid, 0, e.grid.size());
     e.trace = mc ? divergences(ctx, u, *mc, count, e.grid) : traces(ctx, z, count, e.grid);
     for (std::size_t g = 0; g < e.grid.size(); ++g) e.trace[g] *= gain[g];

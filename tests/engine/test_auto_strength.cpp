@@ -409,14 +409,10 @@ TEST(AutoStrength, CurvatureFlowStepsTakeTheirResidualFromTheLaterSteps) {
     const int draws = 3;
     for (int draw = 0; draw < draws; ++draw) {
         const TriangleMesh m = meshes::gaussian_radial_noise(clean, 0.5 * h, 60 + draw);
-        const fairing::Result chosen =
-            fairing::fair(m, {}, automatic(Operator::CurvatureFlow, 2, 4));
-        double best = sphere_error(m.positions);
-        for (double t = 100; t < 1e5; t *= 1.25) {
-            Options o = automatic(Operator::CurvatureFlow, 2, 4);
-            o.time_step = t;
-            best = std::min(best, sphere_error(fairing::fair(m, {}, o).positions));
-        }
+        const Options four_steps = automatic(Operator::CurvatureFlow, 2, 4);
+        const fairing::Result chosen = fairing::fair(m, {}, four_steps);
+        const double best =
+            best_fixed_step_error(m, {}, four_steps, 100, 1e5, 1.25, sphere_error);
         const double ratio = sphere_error(chosen.positions) / best;
         log_ratio += std::log(ratio) / draws;
         worst = std::max(worst, ratio);
