@@ -284,7 +284,9 @@ if vol:
 # 4. invariants on clean shapes: the largest deviation over every time step, order and steps tried
 inv = collections.defaultdict(list)
 for r in R:
-    if r.get("method") == "invariant" and r.get("kind") in ("fixed", "auto") and valid(r):
+    # "max" is missing from the automatic invariant rows of extracts written before session 16 (an earlier
+    # run's extract passed with --auto-from); this run's own rows have it
+    if r.get("method") == "invariant" and r.get("kind") in ("fixed", "auto") and valid(r) and "max" in r:
         inv[(r["mesh"], r["op"], r["kind"])].append(r)
 for (m, op, k_), rs in sorted(inv.items()):
     worst = max(rs, key=lambda r: r["max"])
@@ -303,7 +305,8 @@ for (m, op, k_), rs in sorted(inv.items()):
 measured_cost = any(r.get("method") == "cost" and r.get("auto") != "n/a" for r in R)
 for r in R:
     if r.get("method") == "cost" and not (measured_cost and r.get("auto") == "n/a"):
-        case = "%s %s L², 1 step (%d faces)" % (r["mesh"], r["op"], r["faces"])
+        # extracts before session 16 dropped a cost row's faces
+        case = "%s %s L², 1 step%s" % (r["mesh"], r["op"], " (%d faces)" % r["faces"] if "faces" in r else "")
         if r.get("auto") == "n/a":
             T.append(("auto's extra cost ≤ 2 × one step at the chosen strength", case,
                       "no automatic strength in this tree", "≤ 2", "n/a"))
@@ -526,9 +529,9 @@ if os.path.abspath(extract) not in [os.path.abspath(x) for x in srcs + [peers_fr
                 r = dict(r, op=None, order=None, steps=None)
             elif not (id(r) in keep or r.get("method") in ("invariant", "cost")):
                 continue
-            drop = DROP + (("max", "seconds", "cg", "strength_seconds", "noise_level_edges", "filter", "params")
+            drop = (DROP if r.get("method") != "cost" else ()) + (("max", "seconds", "cg", "strength_seconds", "noise_level_edges", "filter", "params")
                            if r.get("kind") != "auto" and r.get("method") not in ("cost", "invariant") else
-                           ("max", "cg") if r.get("kind") == "auto" else ())
+                           ("max", "cg") if r.get("kind") == "auto" and r.get("method") != "invariant" else ())
             fo.write(json.dumps({k: (float("%.5g" % v) if isinstance(v, float) else v) for k, v in r.items()
                                  if k not in drop and v is not None}, ensure_ascii=False, separators=(",", ":")) + "\n")
 
