@@ -25,6 +25,8 @@ p.add_argument("--quick", action="store_true", help="a few small meshes")
 p.add_argument("--only", default="", help="comma-separated mesh names")
 p.add_argument("--results", default="")
 p.add_argument("--jobs", type=int, default=2)
+p.add_argument("--seed", type=int, default=1,
+               help="the noise's seed (default 1, the study's); other seeds check the figures on other draws")
 p.add_argument("--no-cost", action="store_true", help="skip the >= 1 M-face cost row")
 p.add_argument("--peers-from", default="", help="passed to denoise_report.py (with --ours-only)")
 p.add_argument("--auto-from", default="",
@@ -127,9 +129,9 @@ def prepare(name, make, truth):
     info = jlines(run([DT, "info", clean]).stdout)[0]
     cases = []
     for tag, sigma, kind in NOISES:
-        noisy = os.path.join(meshes_dir, "dn_%s_%s.ply" % (name, tag))
+        noisy = os.path.join(meshes_dir, "dn_%s_%s%s.ply" % (name, tag, "" if a.seed == 1 else "_s%d" % a.seed))
         if not os.path.exists(noisy):
-            run([DT, "noise", clean, noisy, repr(sigma), "1", kind])
+            run([DT, "noise", clean, noisy, repr(sigma), str(a.seed), kind])
         cases.append(dict(noise=tag, sigma=sigma, noise_kind=kind, noisy=noisy))
     return dict(name=name, clean=clean, truth=truth, info=info, cases=cases)
 
@@ -409,14 +411,16 @@ def main():
         log("cost rows on %s" % ", ".join(m[0] for m in COST_MESHES))
         rows.extend(cost_rows(auto_cli, auto_tool))
     # An --only run keeps its own file: it must not replace the full run's rows (--peers-from).
-    rows_path = os.path.join(runs_dir, "denoise-%s%s%s.jsonl" % (
+    rows_path = os.path.join(runs_dir, "denoise-%s%s%s%s.jsonl" % (
         "only-" + "+".join(only) if only else "full", "-quick" if a.quick else "",
-        "-ours" if a.ours_only else "-auto" if a.auto_from else ""))
+        "-ours" if a.ours_only else "-auto" if a.auto_from else "", "" if a.seed == 1 else "-s%d" % a.seed))
     meta = dict(date=time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), machine=platform.node(),
                 cores=os.cpu_count(), load_after=os.getloadavg(), minutes=(time.time() - started) / 60,
                 git=run(["git", "-C", root, "describe", "--always", "--dirty", "--abbrev=7"]).stdout.strip(),
                 command="bench/denoise.sh" + (" --quick" if a.quick else "") + (" --only " + a.only if only else "")
-                        + (" --ours-only" if a.ours_only else "") + (" --auto-from ..." if a.auto_from else ""),
+                        + (" --ours-only" if a.ours_only else "") + (" --auto-from ..." if a.auto_from else "")
+                        + (" --seed %d" % a.seed if a.seed != 1 else ""),
+                seed=a.seed,
                 auto_cli=auto_cli, auto_engine=auto_tool, task_minutes={k: round(v / 60, 2) for k, v in spent.items()}, meshes=[dict(name=m["name"], kind=dict(ALL_KIND)[m["name"]], truth=m["truth"], **m["info"])
                                            for m in meshes], noises=NOISES, failures=failures,
                 full_rows="$FAIRING_CACHE/denoise-runs/" + os.path.basename(rows_path))

@@ -5,7 +5,7 @@
 # time step of a sweep ("oracle"), of the automatic strength (when the engine / CLI have it) and
 # of each peer at its own best setting, in one run. See bench/README.md, "Denoising study".
 #
-#   bench/denoise.sh [--quick] [--only NAMES] [--results DIR] [--jobs N] [--build DIR]
+#   bench/denoise.sh [--quick] [--only NAMES] [--results DIR] [--jobs N] [--seed N] [--build DIR]
 #                    [--no-install] [--no-cost] [--ours-only --peers-from RUN.jsonl]
 #                    [--auto-from RUN.jsonl]
 #
@@ -14,6 +14,8 @@
 #   --results DIR  write denoise.md, denoise_oracle.md, denoise.jsonl and the PNGs into DIR
 #                  instead of bench/results (bench/results/denoise-quick with --quick)
 #   --jobs N       parallel runs (default 2; the runs themselves are single-threaded)
+#   --seed N       the noise's seed (default 1, the study's; other seeds are other draws of the
+#                  same noise, their inputs and full rows kept apart in the cache)
 #   --build DIR    build directory (default $FAIRING_CACHE/bench-build, as bench/run.sh)
 #   --no-install   do not apt-get install the peers (libcgal-dev libopenmesh-dev gnuplot-nox)
 #   --no-cost      skip the >= 1 M-face cost rows (Loop x2 bunny, 1 M-face torus)
@@ -36,13 +38,13 @@ while [ $# -gt 0 ]; do
     --quick|--no-cost|--ours-only) args+=("$1") ;;
     --peers-from|--auto-from) [ $# -ge 2 ] || { echo "denoise.sh: $1 needs a value" >&2; exit 2; }
       args+=("$1" "$(cd "$(dirname "$2")" && pwd)/$(basename "$2")"); shift ;;
-    --only|--jobs) [ $# -ge 2 ] || { echo "denoise.sh: $1 needs a value" >&2; exit 2; }
+    --only|--jobs|--seed) [ $# -ge 2 ] || { echo "denoise.sh: $1 needs a value" >&2; exit 2; }
       args+=("$1" "$2"); shift ;;
     --results) [ $# -ge 2 ] || { echo "denoise.sh: $1 needs a value" >&2; exit 2; }
       mkdir -p "$2"; args+=(--results "$(cd "$2" && pwd)"); shift ;;
     --build) [ $# -ge 2 ] || { echo "denoise.sh: $1 needs a value" >&2; exit 2; }
       bb=$2; shift ;;
-    -h|--help) sed -n 2,26p "$0"; exit 0 ;;
+    -h|--help) sed -n 2,28p "$0"; exit 0 ;;
     *) echo "denoise.sh: unknown option $1" >&2; exit 2 ;;
   esac
   shift
