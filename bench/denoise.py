@@ -320,6 +320,9 @@ def auto_from_tasks(meshes):
     best = {}
     for line in (open(a.auto_from) if a.auto_from != "none" else []):
         r = json.loads(line)
+        if "meta" in r and r["meta"].get("seed", 1) != a.seed:
+            sys.exit("denoise: %s holds the oracles of noise seed %d, this run draws seed %d"
+                     % (a.auto_from, r["meta"].get("seed", 1), a.seed))
         if r.get("method") == "ours" and r.get("kind") == "fixed" and r.get("rms") is not None:
             k = (r["mesh"], r["noise"], r["op"], r["order"], r["steps"])
             if k not in best or r["rms"] < best[k]["rms"]:
