@@ -49,7 +49,10 @@ constexpr double kStall = 0.8;
 // / 1213 and L^2 at 22.5 / 360 / 5760, 10-25 % fewer in all 30 cases but two equal ones (camel:
 // 24 / 41 / 60 and 59 / 77 / 91 against 30 / 53 / 78 and 68 / 93 / 114). The complex smoother
 // keeps 1.7: 2.0 took the torus' L^2 at 360 from 53 to 94 iterations, 1.5 the bunny's from 35
-// to 38.
+// to 38. (That was with the bound on mass - a stiff; on the complex moduli (session 17) the
+// weight matters little: 1.7 / 1.85 / 2.0 / 2.3 gave 23 / 22 / 22 / 24, 28 / 28 / 27 / 26 and
+// 30 at every weight for curvature L^2 at 90 / 360 / 5000 on the 1 M-face torus, 20-21, 22 and
+// 26-28 on the 1.2 M-face bunny.)
 constexpr double kSmootherWeight = 1.85;
 constexpr double kComplexSmootherWeight = 1.7;
 // Strength threshold of the coarse levels (on the finest level every mesh neighbour is strong:
@@ -199,22 +202,47 @@ Csr transpose(const Csr& p, int nc) {
     return r;
 }
 
-// An upper bound on rho(D_A^-1 A) for A = mass - a stiff given by row(i, fn) (diagonal
-// included): the smaller of Gershgorin's bound on the rows of D_A^-1 A and on the symmetrically
-// scaled D_A^-1/2 A D_A^-1/2 (similar to it), max_i sum_j |A_ij| / sqrt(A_ii A_jj). The second is
-// the tighter where the diagonal varies (needles: 2.86 against 4.05 on the bunny above).
+// An upper bound on rho(D_B^-1 B) for B = mass - a stiff (Real) or mass + i a stiff (Complex)
+// given by row(i, fn) (diagonal included), D_B its diagonal: the smaller of Gershgorin's bound
+// on the rows of D_B^-1 B and on the symmetrically scaled |D_B|^-1/2 B |D_B|^-1/2 (similar to it
+// up to a unit diagonal phase), max_i sum_j |B_ij| / sqrt(|B_ii| |B_jj|). The second is the
+// tighter where the diagonal varies (needles: 2.86 against 4.05 on the bunny above). The
+// complex bound takes the moduli |m + i a s|: on a coarse level the mass couplings (P^T M P is
+// not diagonal) and the stiffness ones have the same sign, so the real m - a s cancels where the
+// level's stiffness matches its mass, and a bound from it set the complex smoother's weight up
+// to several times too high there. Measured (curvature L^2, one step, 2 threads, V-cycle): on
+// a 2.5 M-face jittered torus the cycles went 33 / 126 / 32 at time steps 300 / 850 / 3147 and
+// 29 / 29 / 31 with the complex bound; on a 10 M-face one at 1012 from 588 to 46, and on a
+// 40 M-face one at 1012 (its automatic strength) COCG stalled near 1e-5 instead of converging.
+// Rows with adiag <= 0 are excluded.
 template <class Row>
-double jacobi_bound(int n, const Row& row, const std::vector<double>& adiag, double a) {
+double jacobi_bound(int n, const Row& row, const std::vector<double>& adiag, double a,
+                    Multigrid::Kind kind = Multigrid::Kind::Real) {
+    const bool complex = kind == Multigrid::Kind::Complex;
+    const auto modulus = [a, complex](double m, double s) {
+        return complex ? std::hypot(m, a * s) : std::abs(m - a * s);
+    };
+    // |B_ii|: adiag itself for Real (mass - a stiff > 0 on the rows kept).
+    std::vector<double> complex_diagonal;
+    if (complex) {
+        complex_diagonal.assign(static_cast<std::size_t>(n), 0.0);
+        for (int i = 0; i < n; ++i)
+            if (adiag[i] > 0)
+                row(i, [&](int j, double m, double s) {
+                    if (j == i) complex_diagonal[i] = modulus(m, s);
+                });
+    }
+    const std::vector<double>& diagonal = complex ? complex_diagonal : adiag;
     double by_rows = 0, symmetric = 0;
     for (int i = 0; i < n; ++i) {
-        if (!(adiag[i] > 0)) continue;
+        if (!(adiag[i] > 0) || !(diagonal[i] > 0)) continue;
         double sum = 0, scaled = 0;
         row(i, [&](int j, double m, double s) {
-            const double v = std::abs(m - a * s);
+            const double v = modulus(m, s);
             sum += v;
-            if (adiag[j] > 0) scaled += v / std::sqrt(adiag[i] * adiag[j]);
+            if (adiag[j] > 0 && diagonal[j] > 0) scaled += v / std::sqrt(diagonal[i] * diagonal[j]);
         });
-        by_rows = std::max(by_rows, sum / adiag[i]);
+        by_rows = std::max(by_rows, sum / diagonal[i]);
         symmetric = std::max(symmetric, scaled);
     }
     return std::min(by_rows, symmetric);
@@ -274,7 +302,7 @@ Split Multigrid::Impl::coarsen(int n, const Row& row, const std::vector<double>&
     };
     std::vector<int> agg;
     const int nc = aggregate(n, adiag, strong, agg);
-    const double rho = jacobi_bound(n, row, adiag, aa);
+    const double rho = jacobi_bound(n, row, adiag, aa, kind);
     *omega_out = rho > 0 ? smoother_weight() / rho : 0.0;
     // The prolongator is smoothed with the filtered matrix A_F (Vanek, Mandel, Brezina 1996,
     // section 3): repelling couplings (A_ij > 0: negative cotangent weights across obtuse
@@ -425,7 +453,7 @@ void Multigrid::Impl::build() {
         };
         const bool last = nc <= kCoarsest || nc > kStall * nf || l + 1 == kMaxLevels;
         if (last) {
-            const double rho = jacobi_bound(nc, coarse_row, cdiag, a);
+            const double rho = jacobi_bound(nc, coarse_row, cdiag, a, kind);
             const double last_w = rho > 0 ? smoother_weight() / rho : 0.0;
             finish_level(levels[l], std::move(m), last_w);
             coarsest(levels[l]);

@@ -31,7 +31,9 @@
 // from zero: on the finest level one block Gauss-Seidel sweep each way (forward, then backward:
 // sweeps.h; where its blocks hold most couplings, else a damped Jacobi sweep), below damped
 // Jacobi sweeps, two for Kind::Real (weight 1.85 / rho) and four for Kind::Complex (1.7 / rho,
-// with the complex diagonal).
+// with the complex diagonal); rho is a Gershgorin bound on the level's own matrix, for Complex
+// on the moduli |mass + i a stiff| (a bound on mass - a stiff, which cancels on the coarse
+// levels, once made the cycle stall at some time steps: multigrid.cpp, jacobi_bound).
 // Pre and post smoothing are transposes of each other and the coarse solve is exact, so the
 // cycle is a symmetric (Real) or complex-symmetric (Complex) linear operator: valid for CG and
 // COCG. Gauss-Seidel on the finest level took up to a quarter fewer cycles (3-26 %) at the same
