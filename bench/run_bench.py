@@ -336,7 +336,7 @@ def write_results():
             cores=os.cpu_count(), mem_gb=round(os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES") / 2**30),
             load_before=load0, load_after=os.getloadavg(), minutes=(time.time() - started) / 60,
             date=time.strftime("%Y-%m-%d %H:%M"), t_diff=T_DIFF, om_iters=OM_ITERS, ml_steps=ML_STEPS,
-            git=subprocess.run(["git", "-C", root, "describe", "--always", "--dirty", "--abbrev=7"], capture_output=True, text=True).stdout.strip(),
+            git=GIT_AT_START,
             dirty=bool(subprocess.run(["git", "-C", root, "status", "--porcelain", "fairing"], capture_output=True, text=True).stdout.strip()),
             command="bench/run.sh" + (" --quick" if a.quick else "") + (" --only " + a.only if only else "")
                     + (" --issue12-only" if a.issue12_only else "")
@@ -355,6 +355,10 @@ def write_results():
 
 # ------------------------------------------------------------------ the runs
 started = time.time()
+# The commit as the run starts: the run writes its results into the tree (bench/results/...) as
+# it goes, which `git describe --dirty` at the end would count as a change.
+GIT_AT_START = subprocess.run(["git", "-C", root, "describe", "--always", "--dirty", "--abbrev=7"],
+                              capture_output=True, text=True).stdout.strip()
 load0 = os.getloadavg()
 micro = micro_records()
 done = False
