@@ -149,20 +149,25 @@ double mean_edge_length(const HalfEdgeMesh& mesh, const Positions& positions, in
 
 namespace {
 
-// Largest |cot| eq. 14 uses: an angle of 0.01 rad (0.57 degrees). Needles beyond it (slivers
-// that a noisy scan or a strong curvature-flow step leaves) give weights up to a million times
-// those of their neighbours, and conjugate gradients stall near 1e-7 on them. Measured on CGAL's
-// camel (20 k faces) with the curvature flow's one-click settings: at noise 0.1 / 0.5 / 0.25 iso
-// edge, step 4 stalled uncapped and with a cap of 1e3 (at noise 0.5); with 100 all converge.
-// pmp-library clamps every cotangent to 19.1 (3 degrees); only needles are capped here, so every
-// other mesh keeps the paper's exact weights.
-constexpr double kCotangentCap = 100;
+// Sliver faces (an angle below 3 degrees or above 177) give cotangent weights many times those of
+// their neighbours, of either sign, and the linear solves crawl on them; needles (an angle below
+// 0.01 rad) give up to a million times, and CG stalled near 1e-7 on CGAL's camel (20 k faces,
+// the curvature flow's one-click settings, noise 0.1 / 0.5 / 0.25 iso edge) uncapped and with a
+// cap of 1e3. Every cotangent of eq. 14 is therefore clamped to +-kCotangentCap (operators.h),
+// pmp-library's bound. It was 100, for needles only; at 19.1 the slivers between the two (0-0.8 %
+// of the faces of the study's noisy scans, at most one on its shapes with noise along the
+// normals) no longer stall the solves,
+// and the study's best errors moved by -3 % to +2 % (bench/results/issue12/preconditioners.md,
+// "Slivers"). The one-click curvature flow, two threads: 1 M-face torus with 0.25 edge of noise
+// in all directions 24.1 -> 16.3 s (Gauss-Seidel 237 / 343 / 343 / 333 iterations; now 204, then
+// V-cycles 52 / 51 / 48: the later steps are no longer needle-rich, solver.cpp), the raw-
+// triangulation dragon (1.3 M faces, noise along the normals) 23.2 -> 18.5 s.
 
-// Caps a needle's cotangents at +-kCotangentCap, keeping its share of the stiffness positive
+// Caps a sliver's cotangents at +-kCotangentCap, keeping its share of the stiffness positive
 // semi-definite: a triangle's cotangent form is so iff c0 c1 + c1 c2 + c2 c0 >= 0 (it is 1 for
 // exact cotangents), and if capping broke that, its negative weights (the obtuse corner's) are
 // dropped, which leaves non-negative ones.
-void cap_needle(double* cot) {
+void cap_sliver(double* cot) {
     for (int k = 0; k < 3; ++k) cot[k] = std::max(-kCotangentCap, std::min(kCotangentCap, cot[k]));
     if (cot[0] * cot[1] + cot[1] * cot[2] + cot[2] * cot[0] >= 0) return;
     for (int k = 0; k < 3; ++k) cot[k] = std::max(0.0, cot[k]);
@@ -171,8 +176,8 @@ void cap_needle(double* cot) {
 // Cotangents of the corners opposite each half-edge of this thread's share of the faces (eq. 14),
 // and twice their area (into twice_area, one thread per face) or their area added to their
 // vertices (into area, one thread only); faces of zero area, which the paper says to skip
-// (section 5.4), get zeros and are counted, as are needles (|cot| > kCotangentCap, whose
-// cotangents are capped: see cap_needle).
+// (section 5.4), get zeros and are counted, as are needles (|cot| > kNeedleCotangent); every
+// sliver's cotangents are capped (cap_sliver).
 void cotangent_pass(const HalfEdgeMesh& mesh, const Positions& positions, const detail::Team& team,
                     double* cot_opposite, double* twice_area, double* area, long long& zero_area,
                     long long& needles) {
@@ -197,10 +202,8 @@ void cotangent_pass(const HalfEdgeMesh& mesh, const Positions& positions, const 
             cot_opposite[3 * f + k] = u.dot(v) / twice;
             largest_cot = std::max(largest_cot, std::abs(cot_opposite[3 * f + k]));
         }
-        if (largest_cot > kCotangentCap) {
-            ++needles;
-            cap_needle(cot_opposite + 3 * f);
-        }
+        if (largest_cot > kNeedleCotangent) ++needles;
+        if (largest_cot > kCotangentCap) cap_sliver(cot_opposite + 3 * f);
         if (twice_area) twice_area[f] = twice;
         else if (area)
             for (int k = 0; k < 3; ++k) area[t[k]] += 0.5 * twice;

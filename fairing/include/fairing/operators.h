@@ -40,9 +40,16 @@ struct AssemblyReport {
     int zero_area_faces = 0;   // skipped by the curvature operator
     int floored_edges = 0;     // edges shorter than 1e-4 of the mean, lengthened for 1/|e|
     int massless_vertices = 0; // vertices with faces but no mass: their star is degenerate
-    int needle_faces = 0;      // curvature: faces with an angle below ~0.01 rad (|cot| > 100),
-                               // whose cotangents were capped at 100 (operators.cpp)
+    int needle_faces = 0;      // curvature: faces with an angle below ~0.01 rad
+                               // (|cot| > kNeedleCotangent), capped as every sliver is
 };
+
+// The curvature operator (eq. 14) clamps every cotangent to +-kCotangentCap, an angle of 3
+// degrees (pmp-library's bound), keeping each face's form semi-definite: slivers of raw scans and
+// of noise in all directions otherwise stall the solves (operators.cpp). Faces with an angle
+// below 0.01 rad are counted as needles (AssemblyReport::needle_faces) and warned about.
+inline constexpr double kCotangentCap = 19.1;
+inline constexpr double kNeedleCotangent = 100;
 
 // Assembles op on the mesh at the given positions (curvature: eq. 14, faces of zero area skipped;
 // scale-dependent: eq. 11; umbrella: eq. 7). With normalized = true, mass[i] = sum_j w_ij
