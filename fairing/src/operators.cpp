@@ -156,11 +156,12 @@ namespace {
 // cap of 1e3. Every cotangent of eq. 14 is therefore clamped to +-kCotangentCap (operators.h),
 // pmp-library's bound. It was 100, for needles only; at 19.1 the slivers between the two (0-0.8 %
 // of the faces of the study's noisy scans, at most one on its shapes with noise along the
-// normals) no longer stall the solves, and the study's best errors moved by -3 % to +2 %
-// (bench/results/issue12/preconditioners.md, "Slivers"). The one-click curvature flow, two threads: 1 M-face torus with 0.25 edge of noise
-// in all directions 24.1 -> 16.3 s (Gauss-Seidel 237 / 343 / 343 / 333 iterations; now 204, then
-// V-cycles 52 / 51 / 48: the later steps are no longer needle-rich, solver.cpp), the raw-
-// triangulation dragon (1.3 M faces, noise along the normals) 23.2 -> 18.5 s.
+// normals) no longer stall the solves, and the study's best errors moved by -2.8 % to +2.3 %
+// (bench/results/issue12/preconditioners.md, "Slivers"). The one-click curvature flow, two
+// threads: 1 M-face torus with 0.25 edge of noise in all directions 24.1 -> 16.3 s (Gauss-Seidel
+// 237 / 343 / 343 / 333 iterations; now 204, then V-cycles 52 / 51 / 48: the later steps are no
+// longer needle-rich, solver.cpp), the raw-triangulation dragon (1.3 M faces, noise along the
+// normals) 23.2 -> 18.5 s.
 
 // Caps a sliver's cotangents at +-kCotangentCap, keeping its share of the stiffness positive
 // semi-definite: a triangle's cotangent form is so iff c0 c1 + c1 c2 + c2 c0 >= 0 (it is 1 for
