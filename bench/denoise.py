@@ -50,6 +50,10 @@ results = (os.path.abspath(a.results) if a.results else
 for d in (meshes_dir, runs_dir, results):
     os.makedirs(d, exist_ok=True)
 started = time.time()
+# The commit as the run starts, when denoise.sh has just built the tools from it: an edit made
+# while the run goes on would otherwise read as "-dirty" at the end.
+git_at_start = subprocess.run(["git", "-C", root, "describe", "--always", "--dirty", "--abbrev=7"],
+                              capture_output=True, text=True).stdout.strip()
 
 
 def log(*m):
@@ -419,7 +423,7 @@ def main():
         "-ours" if a.ours_only else "-auto" if a.auto_from else "", "" if a.seed == 1 else "-s%d" % a.seed))
     meta = dict(date=time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), machine=platform.node(),
                 cores=os.cpu_count(), load_after=os.getloadavg(), minutes=(time.time() - started) / 60,
-                git=run(["git", "-C", root, "describe", "--always", "--dirty", "--abbrev=7"]).stdout.strip(),
+                git=git_at_start,
                 command="bench/denoise.sh" + (" --quick" if a.quick else "") + (" --only " + a.only if only else "")
                         + (" --ours-only" if a.ours_only else "") + (" --auto-from ..." if a.auto_from else "")
                         + (" --seed %d" % a.seed if a.seed != 1 else ""),

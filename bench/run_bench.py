@@ -337,7 +337,7 @@ def write_results():
             load_before=load0, load_after=os.getloadavg(), minutes=(time.time() - started) / 60,
             date=time.strftime("%Y-%m-%d %H:%M"), t_diff=T_DIFF, om_iters=OM_ITERS, ml_steps=ML_STEPS,
             git=GIT_AT_START,
-            dirty=bool(subprocess.run(["git", "-C", root, "status", "--porcelain", "fairing"], capture_output=True, text=True).stdout.strip()),
+            dirty=ENGINE_DIRTY_AT_START,
             command="bench/run.sh" + (" --quick" if a.quick else "") + (" --only " + a.only if only else "")
                     + (" --issue12-only" if a.issue12_only else "")
                     + ("" if a.micro_json else " --no-micro") + (" --repeat %d" % a.repeat if a.repeat != 1 else ""),
@@ -355,10 +355,13 @@ def write_results():
 
 # ------------------------------------------------------------------ the runs
 started = time.time()
-# The commit as the run starts: the run writes its results into the tree (bench/results/...) as
-# it goes, which `git describe --dirty` at the end would count as a change.
+# The commit and the engine's state as the run starts, when run.sh has just built it: the run
+# writes its results into the tree (bench/results/...) as it goes, which `git describe --dirty`
+# at the end would count as a change, as it would any edit made while the run goes on.
 GIT_AT_START = subprocess.run(["git", "-C", root, "describe", "--always", "--dirty", "--abbrev=7"],
                               capture_output=True, text=True).stdout.strip()
+ENGINE_DIRTY_AT_START = bool(subprocess.run(["git", "-C", root, "status", "--porcelain", "fairing"],
+                                            capture_output=True, text=True).stdout.strip())
 load0 = os.getloadavg()
 micro = micro_records()
 done = False

@@ -285,8 +285,9 @@ void Run::record(const SolveStats& stats, int step, const char* system) {
         number(stats.residual) + ", tolerance " + number(options_.tolerance) +
         (needle_faces_ > 0
              ? " (" + detail::count_of(needle_faces_, "face is a needle", "faces are needles") +
-                   ", with an angle below 0.01 rad: their cotangent weights, even capped at "
-                   "19.1, make the system ill-conditioned; MeshLab's 'Remove T-Vertices by Edge "
+                   ", with an angle below 0.01 rad: their cotangent weights, even capped at " +
+                   number(kCotangentCap) +
+                   ", make the system ill-conditioned; MeshLab's 'Remove T-Vertices by Edge "
                    "Flip' or 'Merge Close Vertices' repairs them)"
              : std::string());
     if (!options_.accept_unconverged)
@@ -745,9 +746,10 @@ void Run::warn_about_input() {
              " only degenerate faces around it and was kept in place");
     if (needle_faces_ > 0)
         warn(detail::count_of(needle_faces_, "face was a needle", "faces were needles") +
-             " (an angle below 0.01 rad) in some step; their cotangent weights were capped at "
-             "19.1, as every sliver's (MeshLab's 'Remove T-Vertices by Edge Flip' or 'Merge "
-             "Close Vertices' repairs them)");
+             " (an angle below 0.01 rad) in some step; their cotangent weights were capped at " +
+             number(kCotangentCap) +
+             ", as every sliver's (MeshLab's 'Remove T-Vertices by Edge Flip' or 'Merge Close "
+             "Vertices' repairs them)");
 }
 
 Result Run::run() {
