@@ -48,8 +48,8 @@ struct AssemblyReport {
 // degrees (pmp-library's bound), keeping each face's form semi-definite: slivers of raw scans and
 // of noise in all directions otherwise stall the solves (operators.cpp). Faces with an angle
 // below 0.01 rad are counted as needles (AssemblyReport::needle_faces) and warned about.
-inline constexpr double kCotangentCap = 19.1;
-inline constexpr double kNeedleCotangent = 100;
+constexpr double kCotangentCap = 19.1;
+constexpr double kNeedleCotangent = 100;
 
 // Assembles op on the mesh at the given positions (curvature: eq. 14, faces of zero area skipped;
 // scale-dependent: eq. 11; umbrella: eq. 7). With normalized = true, mass[i] = sum_j w_ij
