@@ -739,8 +739,10 @@ void Run::warn_about_input() {
              " kept out of the boundary-curve smoothing");
     if (worst_.floored_edges > 0)
         warn(detail::count_of(worst_.floored_edges, "edge is", "edges are") +
-             " shorter than 1e-4 of the mean edge (duplicated vertices?); their weight was "
-             "bounded (MeshLab's 'Merge Close Vertices' repairs this)");
+             " shorter than " + number(100 * kDuplicateEdge) +
+             " % of the mean edge (duplicated vertices?); their weight was bounded as that of "
+             "any edge under " + number(100 * kShortEdge) +
+             " % of the mean (MeshLab's 'Merge Close Vertices' repairs this)");
     if (worst_.massless_vertices > 0)
         warn(detail::count_of(worst_.massless_vertices, "vertex has", "vertices have") +
              " only degenerate faces around it and was kept in place");

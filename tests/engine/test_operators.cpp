@@ -579,6 +579,46 @@ TEST(Operators, NeedleCotangentsAreCappedAndStayNegativeSemiDefinite) {
     }
 }
 
+// Eq. 11 takes 1/|e| of an edge at least kShortEdge times the mean edge long: shorter edges
+// (here 0.3 % of the mean, as strong steps leave them where thin parts collapse, and 0.005 %, a
+// duplicated vertex) weigh as one of that length, in K and in the mass E/2, and only the second
+// is counted as floored; an edge of 5 % keeps its exact weight.
+TEST(Operators, ScaleDependentShortEdgesWeighAsTheFloor) {
+    for (double fraction : {0.05, 0.003, 5e-5}) {
+        SCOPED_TRACE(testing::Message() << "edge of " << fraction << " mean edges");
+        TriangleMesh m = meshes::grid(6, 6);
+        const int a = meshes::grid_index(3, 3, 6), b = meshes::grid_index(4, 3, 6);
+        // b slides towards a until |ab| is `fraction` of the mesh's mean edge (which moves with it).
+        double mean = 1, length = 1;
+        for (int k = 0; k < 60; ++k) {
+            m.positions.row(b) = m.positions.row(a);
+            m.positions(b, 0) += fraction * mean;
+            const HalfEdgeMesh he = HalfEdgeMesh::build(m.positions, m.triangles);
+            mean = fairing::mean_edge_length(he, m.positions);
+            length = (m.positions.row(b) - m.positions.row(a)).norm();
+        }
+        ASSERT_NEAR(length / mean, fraction, 1e-9 * fraction);
+        fairing::AssemblyReport report;
+        const Assembled s = assemble(Operator::ScaleDependent, m, false, &report);
+        const auto w = weight_map(s.op);
+        const double counted = std::max(length, fairing::kShortEdge * mean);
+        EXPECT_NEAR(weight(w, a, b), 1.0 / counted, 1e-12 / counted);
+        EXPECT_NEAR(weight(w, b, a), 1.0 / counted, 1e-12 / counted);
+        EXPECT_LE(weight(w, a, b), 1.0 / (fairing::kShortEdge * mean) * (1 + 1e-12));
+        const auto nb = meshes::neighbours(m.triangles, static_cast<int>(m.positions.rows()));
+        double E = 0;
+        for (int j : nb[a]) {
+            const double e = (meshes::row(m.positions, j) - meshes::row(m.positions, a)).norm();
+            E += std::max(e, fairing::kShortEdge * mean);
+        }
+        EXPECT_NEAR(s.op.mass[a], E / 2, 1e-13 * E);
+        EXPECT_EQ(report.floored_edges, fraction < fairing::kDuplicateEdge ? 1 : 0);
+        if (fraction > fairing::kShortEdge) {
+            EXPECT_NEAR(weight(w, a, b), 1.0 / length, 1e-12 / length);
+        }
+    }
+}
+
 // The umbrella's K has every weight 1 (eq. 7), which assembly records so that products skip
 // reading them; the other operators' weights vary. Products with and without the shortcut give
 // the same bits (1 * d = d).

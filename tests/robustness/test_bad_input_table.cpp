@@ -250,7 +250,7 @@ TEST(BadInputTable, CoincidentReferencedVerticesAreFlooredAndWarned) {
         const Result r = expect_result(m, {}, defaults(op));
         // 1/|e| is bounded (scale-dependent); the cotangent operator skips the flat faces
         if (op == Operator::ScaleDependent) {
-            EXPECT_TRUE(has_warning(r, "1 edge is shorter than 1e-4 of the mean edge"))
+            EXPECT_TRUE(has_warning(r, "1 edge is shorter than 0.01 % of the mean edge"))
                 << warnings(r);
             EXPECT_TRUE(has_warning(r, "Merge Close Vertices")) << warnings(r);
         }

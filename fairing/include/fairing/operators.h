@@ -38,7 +38,8 @@ struct SparseOperator {
 
 struct AssemblyReport {
     int zero_area_faces = 0;   // skipped by the curvature operator
-    int floored_edges = 0;     // edges shorter than 1e-4 of the mean, lengthened for 1/|e|
+    int floored_edges = 0;     // scale-dependent: edges shorter than kDuplicateEdge of the mean
+                               // (duplicated vertices?), lengthened as every short edge is
     int massless_vertices = 0; // vertices with faces but no mass: their star is degenerate
     int needle_faces = 0;      // curvature: faces with an angle below ~0.01 rad
                                // (|cot| > kNeedleCotangent), capped as every sliver is
@@ -50,6 +51,13 @@ struct AssemblyReport {
 // below 0.01 rad are counted as needles (AssemblyReport::needle_faces) and warned about.
 constexpr double kCotangentCap = 19.1;
 constexpr double kNeedleCotangent = 100;
+
+// The scale-dependent operator (eq. 11) takes 1/|e| of every edge at least kShortEdge times the
+// mean edge long: edges that strong steps collapse (thin parts shrinking to curves) otherwise
+// leave systems no solve can bring to its tolerance (operators.cpp). Edges shorter than
+// kDuplicateEdge times the mean are counted (AssemblyReport::floored_edges) and warned about.
+constexpr double kShortEdge = 0.01;
+constexpr double kDuplicateEdge = 1e-4;
 
 // Assembles op on the mesh at the given positions (curvature: eq. 14, faces of zero area skipped;
 // scale-dependent: eq. 11; umbrella: eq. 7). With normalized = true, mass[i] = sum_j w_ij
