@@ -269,6 +269,8 @@ def engine_memory(m, ts):
 # time of fair() (the machine is shared: wall time counts waits for a core too), the thread rows by
 # wall time.
 ISSUE12_DEFAULTS = (("umbrella", 10.0), ("scale-dependent", 2.5), ("curvature", 22.5))
+# Each filter's one-click step count (parameters/filter_parameters.h defaultSteps).
+ONE_CLICK_STEPS = {"umbrella": 4, "scale-dependent": 2, "curvature": 4}
 
 
 def engine(m, op, order, ts, steps=1, threads=1, freeze=False, preconditioner="auto"):
@@ -305,6 +307,8 @@ def issue12(m):
         if chosen > 0:
             engine(m, op, 2, chosen)
             engine(m, op, 1, math.sqrt(chosen))
+        # The whole one-click run, its step count included: its peak memory is the default's.
+        engine(m, op, 2, "auto", steps=ONE_CLICK_STEPS[op])
     for op, ts in ISSUE12_DEFAULTS:
         engine(m, op, 2, ts)
         engine(m, op, 1, math.sqrt(ts))
