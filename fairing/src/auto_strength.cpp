@@ -759,48 +759,11 @@ public:
     };
 
     Sketch(const Context& ctx, int data_count, Restoration restoration)
-        : restoration_(std::move(restoration)) {
-        const int nc = restoration_.components;
-        volume_.assign(nc, 0.0);
-        area_.assign(nc, 0.0);
-        field2_.assign(nc, 0.0);
-        count_.assign(nc, 0.0);
-        for (std::size_t i = 0; i < restoration_.component.size(); ++i) {
-            const int k = restoration_.component[i];
-            if (k < 0) continue;
-            volume_[k] += restoration_.area[i] * restoration_.field[i];
-            area_[k] += restoration_.area[i];
-            field2_[k] += restoration_.field[i] * restoration_.field[i];
-            count_[k] += 1;
-        }
-        total_ = data_count;
-        exact_ = data_count <= kSketch;
-        rows_ = exact_ ? data_count : kSketch;
-        bucket_.assign(ctx.n, -1);
-        sign_.assign(ctx.n, 1.0f);
-        int next = 0;
-        for (int i = 0; i < ctx.n; ++i) {
-            if (!ctx.data[i]) continue;
-            const std::uint64_t h = mix(static_cast<std::uint64_t>(i) + 0x5bd1e995ull);
-            bucket_[i] = exact_ ? next++ : static_cast<int>(h % static_cast<std::uint64_t>(rows_));
-            if (!exact_) sign_[i] = (h >> 40) & 1 ? 1.0f : -1.0f;
-        }
-        // The largest restored components, whose fields are sketched (ties: the lower index).
-        std::vector<int> by_size(nc);
-        for (int k = 0; k < nc; ++k) by_size[k] = k;
-        std::stable_sort(by_size.begin(), by_size.end(),
-                         [&](int a, int b) { return count_[a] > count_[b]; });
-        slot_.assign(nc, -1);
-        const int sketched = std::min(nc, kSketchedComponents);
-        for (int s = 0; s < sketched; ++s) slot_[by_size[s]] = s;
-        field_sketch_ = Eigen::MatrixXd::Zero(rows_, sketched);
-        one_sketch_ = Eigen::MatrixXd::Zero(rows_, sketched);
-        for (std::size_t i = 0; i < restoration_.component.size(); ++i) {
-            const int k = restoration_.component[i];
-            if (k < 0 || slot_[k] < 0 || bucket_[i] < 0) continue;
-            field_sketch_(bucket_[i], slot_[k]) += static_cast<double>(sign_[i]) * restoration_.field[i];
-            one_sketch_(bucket_[i], slot_[k]) += static_cast<double>(sign_[i]);
-        }
+        : Sketch(layout(ctx, data_count, std::move(restoration))) {}
+    // A sketch of the same data rows and restoration as `same` (the same buckets, signs and
+    // fields, shared: 28 bytes per vertex), with basis vectors of its own.
+    static std::unique_ptr<Sketch> like(const Sketch& same) {
+        return std::unique_ptr<Sketch>(new Sketch(same.layout_));
     }
     bool exact() const { return exact_; }
     // Adds the current basis vector of every active column and, with `probe` (the Monte-Carlo
@@ -1073,18 +1036,109 @@ private:
         return extra + residual.squaredNorm();
     }
 
-    Restoration restoration_;
-    std::vector<double> volume_, area_, field2_, count_;  // per component: a . s, sum a, |s|^2, N
+    // What a sketch's rows and restoration are: buckets, signs, the restoration's fields and
+    // their sketches; fixed once made, so that sketches of the same rows can share it.
+    struct Layout {
+        Restoration restoration;
+        std::vector<double> volume, area, field2, count;
+        std::vector<int> slot;
+        Eigen::MatrixXd field_sketch, one_sketch;
+        double total = 0;
+        int rows = 0;
+        bool exact = false;
+        std::vector<int> bucket;
+        std::vector<float> sign;
+    };
+    static std::shared_ptr<const Layout> layout(const Context& ctx, int data_count,
+                                                Restoration restoration) {
+        auto made = std::make_shared<Layout>();
+        Layout& l = *made;
+        l.restoration = std::move(restoration);
+        const Restoration& restoration_ = l.restoration;
+        std::vector<double>& volume_ = l.volume;
+        std::vector<double>& area_ = l.area;
+        std::vector<double>& field2_ = l.field2;
+        std::vector<double>& count_ = l.count;
+        std::vector<int>& slot_ = l.slot;
+        Eigen::MatrixXd& field_sketch_ = l.field_sketch;
+        Eigen::MatrixXd& one_sketch_ = l.one_sketch;
+        double& total_ = l.total;
+        int& rows_ = l.rows;
+        bool& exact_ = l.exact;
+        std::vector<int>& bucket_ = l.bucket;
+        std::vector<float>& sign_ = l.sign;
+        const int nc = restoration_.components;
+        volume_.assign(nc, 0.0);
+        area_.assign(nc, 0.0);
+        field2_.assign(nc, 0.0);
+        count_.assign(nc, 0.0);
+        for (std::size_t i = 0; i < restoration_.component.size(); ++i) {
+            const int k = restoration_.component[i];
+            if (k < 0) continue;
+            volume_[k] += restoration_.area[i] * restoration_.field[i];
+            area_[k] += restoration_.area[i];
+            field2_[k] += restoration_.field[i] * restoration_.field[i];
+            count_[k] += 1;
+        }
+        total_ = data_count;
+        exact_ = data_count <= kSketch;
+        rows_ = exact_ ? data_count : kSketch;
+        bucket_.assign(ctx.n, -1);
+        sign_.assign(ctx.n, 1.0f);
+        int next = 0;
+        for (int i = 0; i < ctx.n; ++i) {
+            if (!ctx.data[i]) continue;
+            const std::uint64_t h = mix(static_cast<std::uint64_t>(i) + 0x5bd1e995ull);
+            bucket_[i] = exact_ ? next++ : static_cast<int>(h % static_cast<std::uint64_t>(rows_));
+            if (!exact_) sign_[i] = (h >> 40) & 1 ? 1.0f : -1.0f;
+        }
+        // The largest restored components, whose fields are sketched (ties: the lower index).
+        std::vector<int> by_size(nc);
+        for (int k = 0; k < nc; ++k) by_size[k] = k;
+        std::stable_sort(by_size.begin(), by_size.end(),
+                         [&](int a, int b) { return count_[a] > count_[b]; });
+        slot_.assign(nc, -1);
+        const int sketched = std::min(nc, kSketchedComponents);
+        for (int s = 0; s < sketched; ++s) slot_[by_size[s]] = s;
+        field_sketch_ = Eigen::MatrixXd::Zero(rows_, sketched);
+        one_sketch_ = Eigen::MatrixXd::Zero(rows_, sketched);
+        for (std::size_t i = 0; i < restoration_.component.size(); ++i) {
+            const int k = restoration_.component[i];
+            if (k < 0 || slot_[k] < 0 || bucket_[i] < 0) continue;
+            field_sketch_(bucket_[i], slot_[k]) += static_cast<double>(sign_[i]) * restoration_.field[i];
+            one_sketch_(bucket_[i], slot_[k]) += static_cast<double>(sign_[i]);
+        }
+        return made;
+    }
+    explicit Sketch(std::shared_ptr<const Layout> layout)
+        : layout_(std::move(layout)),
+          restoration_(layout_->restoration),
+          volume_(layout_->volume),
+          area_(layout_->area),
+          field2_(layout_->field2),
+          count_(layout_->count),
+          slot_(layout_->slot),
+          field_sketch_(layout_->field_sketch),
+          one_sketch_(layout_->one_sketch),
+          total_(layout_->total),
+          rows_(layout_->rows),
+          exact_(layout_->exact),
+          bucket_(layout_->bucket),
+          sign_(layout_->sign) {}
+
+    std::shared_ptr<const Layout> layout_;
+    const Restoration& restoration_;
+    const std::vector<double>&volume_, &area_, &field2_, &count_;  // per component: a . s, sum a, |s|^2, N
     // The kSketchedComponents largest components' slots (-1: not sketched) and the sketches of
     // their fields s and indicators 1, one column per slot.
-    std::vector<int> slot_;
-    Eigen::MatrixXd field_sketch_, one_sketch_;
-    double total_ = 0;                             // data vertices
+    const std::vector<int>& slot_;
+    const Eigen::MatrixXd &field_sketch_, &one_sketch_;
+    const double total_;  // data vertices
+    const int rows_;
+    const bool exact_;
+    const std::vector<int>& bucket_;  // per vertex, -1 off the data
+    const std::vector<float>& sign_;
     std::vector<std::vector<double>> volume_part_, field_part_, sum_part_;  // per column, component
-    int rows_ = 0;
-    bool exact_ = false;
-    std::vector<int> bucket_;  // per vertex, -1 off the data
-    std::vector<float> sign_;
     std::vector<double> chunk_sums_;  // add()'s sums per chunk (scratch, kept between steps)
     // The sketched basis vectors, rows_ x kSketchBlock each: blocks rather than one matrix grown
     // by doubling, whose copy held the old and the new matrix at once (1.5x the final size: 150
@@ -1394,10 +1448,11 @@ StrengthEstimate estimate_strength(const StrengthProblem& p) {
 
 // The later steps' process for problem p (its operator the steps' mean, `first` the first
 // step's), or nothing where it cannot run paired (step_group) or its operator loses a mass.
-// Assembled after the perturbed problem, whose own assembly would otherwise peak beside it.
+// Assembled after the perturbed problem, whose own assembly would otherwise peak beside it. Its
+// sketch shares the rows and restoration of `sketch`, the movement's (the same data rows).
 std::unique_ptr<LaterSteps> later_steps(const StrengthProblem& p, const Context& ctx,
                                         const Perturbation* mc, const SparseOperator& first,
-                                        const Positions& normals, double count) {
+                                        const Sketch& sketch) {
     if (!mc || !mc->paired || p.steps < 2 || !weights_of(*p.op) || !weights_of(first) ||
         first.column != p.op->column || first.row_start != p.op->row_start)
         return nullptr;
@@ -1415,8 +1470,7 @@ std::unique_ptr<LaterSteps> later_steps(const StrengthProblem& p, const Context&
     later->ctx->c.op = &op;
     if (!pairable(ctx, *later->ctx)) return nullptr;  // also: the same rows and columns as p's
     start_movement(*later->ctx, later->u);
-    later->sketch = std::make_unique<Sketch>(*later->ctx, static_cast<int>(count),
-                                             restoration(p, normals));
+    later->sketch = Sketch::like(sketch);
     // step_group reads the columns from p's operator and forms the weights from the mean's and
     // the first step's: the later operator keeps its masses only.
     const double s = p.steps;
@@ -1479,7 +1533,7 @@ StrengthEstimate risk_minimum(const StrengthProblem& p, const Positions& normals
     Sketch sketch(ctx, static_cast<int>(count), restoration(p, normals));
     const std::unique_ptr<LaterSteps> later =
         first_op && ctx.squared && ctx.weight_root.empty()
-            ? later_steps(p, ctx, mc.get(), *first_op, normals, count)
+            ? later_steps(p, ctx, mc.get(), *first_op, sketch)
             : nullptr;
     const Search found =
         search(ctx, u, z, mc.get(), sketch, normals, count, e.noise_level, later.get());
