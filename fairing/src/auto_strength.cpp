@@ -1040,13 +1040,15 @@ private:
     // their sketches; fixed once made, so that sketches of the same rows can share it.
     struct Layout {
         Restoration restoration;
-        std::vector<double> volume, area, field2, count;
+        std::vector<double> volume, area, field2, count;  // per component: a . s, sum a, |s|^2, N
+        // The kSketchedComponents largest components' slots (-1: not sketched) and the sketches
+        // of their fields s and indicators 1, one column per slot.
         std::vector<int> slot;
         Eigen::MatrixXd field_sketch, one_sketch;
-        double total = 0;
+        double total = 0;  // data vertices
         int rows = 0;
         bool exact = false;
-        std::vector<int> bucket;
+        std::vector<int> bucket;  // per vertex, -1 off the data
         std::vector<float> sign;
     };
     static std::shared_ptr<const Layout> layout(const Context& ctx, int data_count,
@@ -1054,59 +1056,47 @@ private:
         auto made = std::make_shared<Layout>();
         Layout& l = *made;
         l.restoration = std::move(restoration);
-        const Restoration& restoration_ = l.restoration;
-        std::vector<double>& volume_ = l.volume;
-        std::vector<double>& area_ = l.area;
-        std::vector<double>& field2_ = l.field2;
-        std::vector<double>& count_ = l.count;
-        std::vector<int>& slot_ = l.slot;
-        Eigen::MatrixXd& field_sketch_ = l.field_sketch;
-        Eigen::MatrixXd& one_sketch_ = l.one_sketch;
-        double& total_ = l.total;
-        int& rows_ = l.rows;
-        bool& exact_ = l.exact;
-        std::vector<int>& bucket_ = l.bucket;
-        std::vector<float>& sign_ = l.sign;
-        const int nc = restoration_.components;
-        volume_.assign(nc, 0.0);
-        area_.assign(nc, 0.0);
-        field2_.assign(nc, 0.0);
-        count_.assign(nc, 0.0);
-        for (std::size_t i = 0; i < restoration_.component.size(); ++i) {
-            const int k = restoration_.component[i];
+        const Restoration& r = l.restoration;
+        const int nc = r.components;
+        l.volume.assign(nc, 0.0);
+        l.area.assign(nc, 0.0);
+        l.field2.assign(nc, 0.0);
+        l.count.assign(nc, 0.0);
+        for (std::size_t i = 0; i < r.component.size(); ++i) {
+            const int k = r.component[i];
             if (k < 0) continue;
-            volume_[k] += restoration_.area[i] * restoration_.field[i];
-            area_[k] += restoration_.area[i];
-            field2_[k] += restoration_.field[i] * restoration_.field[i];
-            count_[k] += 1;
+            l.volume[k] += r.area[i] * r.field[i];
+            l.area[k] += r.area[i];
+            l.field2[k] += r.field[i] * r.field[i];
+            l.count[k] += 1;
         }
-        total_ = data_count;
-        exact_ = data_count <= kSketch;
-        rows_ = exact_ ? data_count : kSketch;
-        bucket_.assign(ctx.n, -1);
-        sign_.assign(ctx.n, 1.0f);
+        l.total = data_count;
+        l.exact = data_count <= kSketch;
+        l.rows = l.exact ? data_count : kSketch;
+        l.bucket.assign(ctx.n, -1);
+        l.sign.assign(ctx.n, 1.0f);
         int next = 0;
         for (int i = 0; i < ctx.n; ++i) {
             if (!ctx.data[i]) continue;
             const std::uint64_t h = mix(static_cast<std::uint64_t>(i) + 0x5bd1e995ull);
-            bucket_[i] = exact_ ? next++ : static_cast<int>(h % static_cast<std::uint64_t>(rows_));
-            if (!exact_) sign_[i] = (h >> 40) & 1 ? 1.0f : -1.0f;
+            l.bucket[i] = l.exact ? next++ : static_cast<int>(h % static_cast<std::uint64_t>(l.rows));
+            if (!l.exact) l.sign[i] = (h >> 40) & 1 ? 1.0f : -1.0f;
         }
         // The largest restored components, whose fields are sketched (ties: the lower index).
         std::vector<int> by_size(nc);
         for (int k = 0; k < nc; ++k) by_size[k] = k;
         std::stable_sort(by_size.begin(), by_size.end(),
-                         [&](int a, int b) { return count_[a] > count_[b]; });
-        slot_.assign(nc, -1);
+                         [&](int a, int b) { return l.count[a] > l.count[b]; });
+        l.slot.assign(nc, -1);
         const int sketched = std::min(nc, kSketchedComponents);
-        for (int s = 0; s < sketched; ++s) slot_[by_size[s]] = s;
-        field_sketch_ = Eigen::MatrixXd::Zero(rows_, sketched);
-        one_sketch_ = Eigen::MatrixXd::Zero(rows_, sketched);
-        for (std::size_t i = 0; i < restoration_.component.size(); ++i) {
-            const int k = restoration_.component[i];
-            if (k < 0 || slot_[k] < 0 || bucket_[i] < 0) continue;
-            field_sketch_(bucket_[i], slot_[k]) += static_cast<double>(sign_[i]) * restoration_.field[i];
-            one_sketch_(bucket_[i], slot_[k]) += static_cast<double>(sign_[i]);
+        for (int s = 0; s < sketched; ++s) l.slot[by_size[s]] = s;
+        l.field_sketch = Eigen::MatrixXd::Zero(l.rows, sketched);
+        l.one_sketch = Eigen::MatrixXd::Zero(l.rows, sketched);
+        for (std::size_t i = 0; i < r.component.size(); ++i) {
+            const int k = r.component[i];
+            if (k < 0 || l.slot[k] < 0 || l.bucket[i] < 0) continue;
+            l.field_sketch(l.bucket[i], l.slot[k]) += static_cast<double>(l.sign[i]) * r.field[i];
+            l.one_sketch(l.bucket[i], l.slot[k]) += static_cast<double>(l.sign[i]);
         }
         return made;
     }
@@ -1127,16 +1117,15 @@ private:
           sign_(layout_->sign) {}
 
     std::shared_ptr<const Layout> layout_;
+    // layout_'s fields, by their names in the methods.
     const Restoration& restoration_;
-    const std::vector<double>&volume_, &area_, &field2_, &count_;  // per component: a . s, sum a, |s|^2, N
-    // The kSketchedComponents largest components' slots (-1: not sketched) and the sketches of
-    // their fields s and indicators 1, one column per slot.
+    const std::vector<double> &volume_, &area_, &field2_, &count_;
     const std::vector<int>& slot_;
     const Eigen::MatrixXd &field_sketch_, &one_sketch_;
-    const double total_;  // data vertices
+    const double total_;
     const int rows_;
     const bool exact_;
-    const std::vector<int>& bucket_;  // per vertex, -1 off the data
+    const std::vector<int>& bucket_;
     const std::vector<float>& sign_;
     std::vector<std::vector<double>> volume_part_, field_part_, sum_part_;  // per column, component
     std::vector<double> chunk_sums_;  // add()'s sums per chunk (scratch, kept between steps)
