@@ -524,8 +524,8 @@ std::array<double, 2> stiffness(const LinearSystem& system) {
 // (bench/results/issue12/preconditioners.md, last section).
 //
 // Since then the complex solve's Jacobi gave way to block symmetric Gauss-Seidel
-// (complex_factor.h) from stiffness kGaussSeidelFrom on, except for the umbrella, and the
-// V-cycle's threshold moved. Measured in one run each (1 thread, CPU seconds of fair(),
+// (complex_factor.h) from stiffness 3.5 on (and below since session 19, after the figures
+// further down), except for the umbrella, and the V-cycle's threshold moved. Measured in one run each (1 thread, CPU seconds of fair(),
 // bench/results/issue12/preconditioners.md, "Symmetric Gauss-Seidel"), complex Jacobi /
 // Gauss-Seidel / V-cycle, stiffness in brackets:
 //   bunny (Loop x2, 603 k vertices): umbrella 10 [3.2] 1.34 / 1.42 / 2.28 s; scale-dependent 2.5
@@ -567,7 +567,19 @@ constexpr double kMultigridFirstOrder = 20;
 constexpr double kMultigridComplex = 9;
 constexpr double kMultigridComplexUnitWeights = 20;
 constexpr double kMultigridRows = 50000;
-constexpr double kGaussSeidelFrom = 3.5;
+// The sweeps also win below the stiffness of 3.5 from which they used to be taken (nothing had
+// been measured there, and the scans' one-click curvature steps fall there: time steps 1-3).
+// Session 19, one thread, CPU seconds of fair() (iterations), complex Jacobi / Gauss-Seidel,
+// stiffness in brackets: bunny Loop x2 curvature 0.05 [0.27] 1.31 / 1.05 (16 / 8), 0.5 [0.84]
+// 2.06 / 1.52 (37 / 18), scale-dependent 0.05 [0.71] 1.45 / 1.28, 0.5 [2.2] 2.35 / 2.17, 2 [4.5]
+// 3.32 / 3.00; 1 M-face torus curvature 0.05 / 0.5 0.70 / 0.68, 1.05 / 0.99, scale-dependent
+// 0.05 [0.53] 0.59 / 0.63 (the one loss, 9 / 7 iterations), 0.5 0.83 / 0.83, 2 1.18 / 1.11;
+// raw-triangulation dragon (1.3 M faces) curvature 0.05 2.18 / 1.83, 0.5 [1.3] 3.25 / 2.67,
+// 2.546 [3.0] (its one-click step) 4.82 / 3.70 (110 / 61), scale-dependent 0.05 / 0.5 / 2
+// 2.10 / 1.85, 3.23 / 2.85, 4.52 / 3.22; the study's sphere 3 k and 51 k, flat patch, fandisk
+// and camel at 0.05 and 1: Gauss-Seidel 0-30 % faster in all 20 cases but one tie. So every
+// weighted operator sweeps; the umbrella keeps complex Jacobi (above: its iterations drop by
+// 10-25 % only).
 
 // A later step of the same run (settings.previous: an L^2 step re-assembled on the smoothed
 // mesh) takes the V-cycle when the previous one did, or when complex Jacobi (or Gauss-Seidel,
@@ -826,9 +838,8 @@ SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& 
     const std::array<double, 2> s = stiffness(system);
     if (automatic_multigrid(system, s, settings.previous))
         return solve_complex(system, x, b, scale, goal, settings, true);
-    // Below kGaussSeidelFrom, and for the umbrella, complex Jacobi's iterations cost less than
-    // Gauss-Seidel's fewer (above).
-    const bool gauss_seidel = !system.op->unit_weights && s[0] >= kGaussSeidelFrom;
+    // For the umbrella complex Jacobi's iterations cost less than Gauss-Seidel's fewer (above).
+    const bool gauss_seidel = !system.op->unit_weights;
     // Automatic on the Jacobi path, with half the cap: a system it stalls on (needles whose
     // capped cotangents still leave it ill-conditioned: curvature L^2 x4 at time step 4 on
     // CGAL's camel with isotropic noise stalled at 1e-5 after 2000 iterations) is handed to the
