@@ -13,18 +13,18 @@
 namespace fairing {
 namespace {
 
-// Where 1/|e| is taken (eq. 11) an edge is at least kShortEdge (operators.h) times the mean edge
-// long. Duplicated vertices would give infinite weights, and edges that strong steps collapse
-// ill-condition the later steps past what double precision can solve: scale-dependent L^2 x4 at a
-// time step of 2.5-10 on CGAL's camel (20 k faces, every noise case of the study) collapses the
-// legs, after three steps 859 of its edges are under 1 % of the mean (the shortest 6e-4) and the
-// fourth solve stalled at residuals of 2e-8 to 1e-6 ("did not converge", with every
-// preconditioner). Lengthened to 1 % of the mean, the same steps converge and the study's noisy
-// inputs keep every weight (their shortest edge is 1 % of the mean, on the camel with half an edge
-// of noise): over the study's 3,273 scale-dependent sweep points (its ten meshes, four noises,
-// orders 1 and 2, 1 / 2 / 4 steps) 11 failures -> none, 193 points moved by at most 0.87 %, every
-// best error the same to 1e-6; at 5 % of the mean, 1,060 moved, by up to 7.7 %.
-constexpr double kEdgeFloor = kShortEdge;
+// Where 1/|e| is taken (eq. 11) an edge counts as at least kShortEdge (operators.h) times the mean
+// edge long. Duplicated vertices would give infinite weights, and edges that strong steps
+// collapse ill-condition the later steps past what double precision can solve: scale-dependent
+// L^2 x4 at time steps of 2.5-10 on CGAL's camel (20 k faces, every noise case of the study)
+// collapses the legs; after three steps 859 of its edges were under 1 % of the mean (the
+// shortest 6e-4) and the fourth solve stalled at residuals of 2e-8 to 1e-6 ("did not converge",
+// with every preconditioner). At 1 % of the mean the same steps converge, and the weights of the
+// study's noisy inputs stay exact but for one edge (0.7 % of the mean, the camel at a quarter
+// edge of noise, seed 2; its clean scans have a few, the dragon four down to 0.3 %). Sweeps of
+// the study's meshes and noises (scale-dependent, orders 1 and 2, 1 / 2 / 4 steps, 3,273 time
+// steps from 2 / 2.5 up): 11 failures -> none, 193 results moved by at most 0.87 %, every best
+// error the same to 1e-6; a floor at 5 % of the mean moved 1,060 of them, by up to 7.7 %.
 
 // The mean edge length adds one partial sum per chunk of this many half-edges, then the partial
 // sums in order: the result depends on the mesh only, not on the number of threads (and on a mesh
@@ -366,7 +366,7 @@ SparseOperator assemble(Operator op, const HalfEdgeMesh& mesh, const Positions& 
             if (scale_dependent) {
                 double length = (positions.row(j) - positions.row(i)).norm();
                 if (!(length >= kDuplicateEdge * mean_edge)) ++floored;
-                if (!(length >= kEdgeFloor * mean_edge)) length = kEdgeFloor * mean_edge;
+                if (!(length >= kShortEdge * mean_edge)) length = kShortEdge * mean_edge;
                 w = length;  // 1/length once the row has added it up
             } else if (curvature) {
                 w = cot_opposite[h] + (t >= 0 ? cot_opposite[t] : 0.0);
@@ -430,7 +430,7 @@ SparseOperator assemble_boundary_curve(const HalfEdgeMesh& mesh, const Positions
         const double mean_edge = mean_of_chunks(length_sum, length_count);
         const auto fill = [&](int, int i, int j, int a, int b) {
             result.weight[a] = result.weight[b] = std::max(
-                (positions.row(j) - positions.row(i)).norm(), kEdgeFloor * mean_edge);
+                (positions.row(j) - positions.row(i)).norm(), kShortEdge * mean_edge);
         };
         scatter_rows(mesh, [&mesh](int h) { return mesh.is_boundary(h); }, [](int) {}, fill,
                      rows, team, result);
