@@ -525,9 +525,9 @@ std::array<double, 2> stiffness(const LinearSystem& system) {
 //
 // Since then the complex solve's Jacobi gave way to block symmetric Gauss-Seidel
 // (complex_factor.h) from stiffness 3.5 on (and below since session 19, after the figures
-// further down), except for the umbrella, and the V-cycle's threshold moved. Measured in one run each (1 thread, CPU seconds of fair(),
-// bench/results/issue12/preconditioners.md, "Symmetric Gauss-Seidel"), complex Jacobi /
-// Gauss-Seidel / V-cycle, stiffness in brackets:
+// further down), except for the umbrella, and the V-cycle's threshold moved. Measured in one run
+// each (1 thread, CPU seconds of fair(), bench/results/issue12/preconditioners.md, "Symmetric
+// Gauss-Seidel"), complex Jacobi / Gauss-Seidel / V-cycle, stiffness in brackets:
 //   bunny (Loop x2, 603 k vertices): umbrella 10 [3.2] 1.34 / 1.42 / 2.28 s; scale-dependent 2.5
 //     [5.0] 3.86 / 3.28 / 3.09; curvature 22.5 [5.6] 5.22 / 3.80 / 4.43; curvature 90 [11.2]
 //     6.95 / 4.90 / 4.91; umbrella 197 [14.2] 2.43 / 2.27 / 3.02; scale-dependent 22.1 [14.9]

@@ -168,6 +168,23 @@ Positions complex_solve(const LinearSystem& s, const Positions& start, bool gaus
 
 }  // namespace
 
+// Automatic sweeps for the weighted operators at every strength, the mildest included (their
+// iterations halve there too: solver.cpp), and keeps the umbrella on its complex diagonal.
+TEST(ComplexFactor, AutomaticSweepsForWeightedOperatorsAtEveryStrength) {
+    for (Operator op : meshes::kOperators)
+        for (double t : {0.05, 1.0, 22.5}) {
+            SCOPED_TRACE(testing::Message() << fairing::to_string(op) << " time step " << t);
+            const Case c = make(op, 3);
+            const LinearSystem s = l2_system(c, l2_lambda(c, op, t),
+                                             std::vector<char>(c.op.size(), 1));
+            Positions x = c.mesh.positions;
+            const fairing::SolveStats stats = fairing::solve(s, x, fairing::SolveSettings());
+            EXPECT_TRUE(stats.converged);
+            EXPECT_TRUE(stats.complex_factor);
+            EXPECT_EQ(stats.gauss_seidel, op != Operator::Umbrella);
+        }
+}
+
 TEST(ComplexFactor, GaussSeidelGivesJacobisResultInFewerIterations) {
     // 40,962 vertices, fixed rows: below kParallelRows, so one sweep block.
     for (Operator op : meshes::kOperators) {
