@@ -765,7 +765,7 @@ public:
     static std::unique_ptr<Sketch> like(const Sketch& same) {
         return std::unique_ptr<Sketch>(new Sketch(same.layout_));
     }
-    bool exact() const { return exact_; }
+    bool exact() const { return layout_->exact; }
     // Adds the current basis vector of every active column and, with `probe` (the Monte-Carlo
     // probe's signs b), appends b n . v to (*probed)[c] (Perturbation::w), and with `partner`
     // (the perturbed movement's process) b n . v' of its current basis vector v' to
@@ -788,21 +788,21 @@ public:
         const std::array<Eigen::Index, 3> slot = open_columns(u);
         const std::array<Eigen::Index, 3> twin_slot =
             twin ? twin->open_columns(*twin_u) : std::array<Eigen::Index, 3>{{-1, -1, -1}};
-        const int nc = restoration_.components;
-        const int n = static_cast<int>(bucket_.size());
+        const int nc = layout_->restoration.components;
+        const int n = static_cast<int>(layout_->bucket.size());
         // Many restored components (each chunk holds nine sums per component): one chunk.
         const int chunks = nc <= kSketchChunkComponents ? kSketchChunks : 1;
         const int per_chunk = (n + chunks - 1) / chunks;
-        const std::size_t buckets = 3 * static_cast<std::size_t>(rows_);
+        const std::size_t buckets = 3 * static_cast<std::size_t>(layout_->rows);
         const std::size_t stride = buckets + 9 * static_cast<std::size_t>(nc) + 6;
         chunk_sums_.assign(chunks * stride, 0.0);
         if (twin) twin->chunk_sums_.assign(chunks * stride, 0.0);
-        const int* bucket = bucket_.data();
-        const float* sign = sign_.data();
-        const int* component = restoration_.component.data();
-        const int components_known = static_cast<int>(restoration_.component.size());
-        const double* area = restoration_.area.data();
-        const double* field = restoration_.field.data();
+        const int* bucket = layout_->bucket.data();
+        const float* sign = layout_->sign.data();
+        const int* component = layout_->restoration.component.data();
+        const int components_known = static_cast<int>(layout_->restoration.component.size());
+        const double* area = layout_->restoration.area.data();
+        const double* field = layout_->restoration.field.data();
         const signed char* b_sign = probe ? probe->data() : nullptr;
         const double* nv = normals.data();
         double* v = u.current.data();
@@ -885,7 +885,7 @@ public:
             }
         }
         // One product per block of columns for all lambda.
-        Eigen::MatrixXd v = Eigen::MatrixXd::Zero(rows_, y.cols());
+        Eigen::MatrixXd v = Eigen::MatrixXd::Zero(layout_->rows, y.cols());
         for (std::size_t k = 0; k < blocks_.size(); ++k) {
             const Eigen::Index first_column = static_cast<Eigen::Index>(k) * kSketchBlock;
             const Eigen::Index width = std::min<Eigen::Index>(kSketchBlock, used_ - first_column);
@@ -907,7 +907,7 @@ private:
         for (int c = 0; c < 3; ++c) {
             if (!l.active[c]) continue;
             if (used_ == static_cast<Eigen::Index>(blocks_.size()) * kSketchBlock)
-                blocks_.emplace_back(Eigen::MatrixXd::Zero(rows_, kSketchBlock));
+                blocks_.emplace_back(Eigen::MatrixXd::Zero(layout_->rows, kSketchBlock));
             index_[c].push_back(static_cast<int>(used_));
             slot[c] = used_++;
         }
@@ -933,8 +933,8 @@ private:
     // parts; returns the probe's sums b n . v per column.
     std::array<double, 3> close_columns(const std::array<Eigen::Index, 3>& slot, int chunks,
                                         std::size_t stride, const double* sums) {
-        const int nc = restoration_.components;
-        const std::size_t buckets = 3 * static_cast<std::size_t>(rows_);
+        const int nc = layout_->restoration.components;
+        const std::size_t buckets = 3 * static_cast<std::size_t>(layout_->rows);
         std::array<std::vector<double>, 3> by_volume, by_field, by_sum;
         std::array<double, 3> probe_sum{{0, 0, 0}};
         for (int c = 0; c < 3; ++c) by_volume[c].assign(slot[c] >= 0 ? nc : 0, 0.0);
@@ -946,7 +946,7 @@ private:
             for (int c = 0; c < 3; ++c) {
                 if (slot[c] < 0) continue;
                 double* column = column_data(slot[c]);
-                for (int b = 0; b < rows_; ++b) column[b] += from_bucket[3 * b + c];
+                for (int b = 0; b < layout_->rows; ++b) column[b] += from_bucket[3 * b + c];
                 for (int k = 0; k < nc; ++k) {
                     by_volume[c][k] += from_component[9 * k + c];
                     by_field[c][k] += from_component[9 * k + 3 + c];
@@ -998,41 +998,42 @@ private:
     double restored(const Eigen::Ref<const Eigen::VectorXd>& y,
                     const Eigen::Ref<const Eigen::VectorXd>& sketched, double& gain) const {
         gain = 1;
-        if (restoration_.components == 0) return sketched.squaredNorm();
+        const Layout& l = *layout_;
+        if (l.restoration.components == 0) return sketched.squaredNorm();
         double extra = 0, weighted_beta = 0, covered = 0;
-        const Eigen::Index fields = field_sketch_.cols();
+        const Eigen::Index fields = l.field_sketch.cols();
         Eigen::VectorXd along_field = Eigen::VectorXd::Zero(fields), along_one = along_field;
-        for (int k = 0; k < restoration_.components; ++k) {
-            if (!(volume_[k] > 0)) continue;
+        for (int k = 0; k < l.restoration.components; ++k) {
+            if (!(l.volume[k] > 0)) continue;
             double by_volume = 0, by_field = 0, by_sum = 0;
             for (Eigen::Index j = 0; j < used_; ++j) {
                 by_volume += volume_part_[j][k] * y(j);
                 by_field += field_part_[j][k] * y(j);
                 by_sum += sum_part_[j][k] * y(j);
             }
-            const double v = volume_[k] / 3;
-            const int offset = restoration_.offset[k];
+            const double v = l.volume[k] / 3;
+            const int offset = l.restoration.offset[k];
             const double left = std::max(1 - by_volume / (3 * v), 0.1);  // 1 - delta
             const double beta = 1 / left;
-            const int slot = slot_[k];
-            covered += count_[k];
+            const int slot = l.slot[k];
+            covered += l.count[k];
             if (offset == 1 ||
                 (offset == 2 && std::abs(beta * beta * beta - 1) <= kMaxOffsetChange)) {
-                const double t = by_volume / area_[k];
+                const double t = by_volume / l.area[k];
                 if (slot >= 0) along_one(slot) = -t;
-                else extra += t * t * count_[k] - 2 * t * by_sum;
-                weighted_beta += count_[k];
+                else extra += t * t * l.count[k] - 2 * t * by_sum;
+                weighted_beta += l.count[k];
                 continue;
             }
             if (slot >= 0) along_field(slot) = 1 - beta;
-            else extra += (1 - beta) * (1 - beta) * field2_[k] + 2 * beta * (1 - beta) * by_field;
-            weighted_beta += beta * count_[k];
+            else extra += (1 - beta) * (1 - beta) * l.field2[k] + 2 * beta * (1 - beta) * by_field;
+            weighted_beta += beta * l.count[k];
         }
         if (covered == 0) return sketched.squaredNorm();
-        gain = (weighted_beta + (total_ - covered)) / total_;
-        const double beta_all = covered == total_ ? weighted_beta / covered : 1.0;
+        gain = (weighted_beta + (l.total - covered)) / l.total;
+        const double beta_all = covered == l.total ? weighted_beta / covered : 1.0;
         const Eigen::VectorXd residual =
-            beta_all * sketched + field_sketch_ * along_field + one_sketch_ * along_one;
+            beta_all * sketched + l.field_sketch * along_field + l.one_sketch * along_one;
         return extra + residual.squaredNorm();
     }
 
@@ -1100,36 +1101,12 @@ private:
         }
         return made;
     }
-    explicit Sketch(std::shared_ptr<const Layout> layout)
-        : layout_(std::move(layout)),
-          restoration_(layout_->restoration),
-          volume_(layout_->volume),
-          area_(layout_->area),
-          field2_(layout_->field2),
-          count_(layout_->count),
-          slot_(layout_->slot),
-          field_sketch_(layout_->field_sketch),
-          one_sketch_(layout_->one_sketch),
-          total_(layout_->total),
-          rows_(layout_->rows),
-          exact_(layout_->exact),
-          bucket_(layout_->bucket),
-          sign_(layout_->sign) {}
+    explicit Sketch(std::shared_ptr<const Layout> layout) : layout_(std::move(layout)) {}
 
     std::shared_ptr<const Layout> layout_;
-    // layout_'s fields, by their names in the methods.
-    const Restoration& restoration_;
-    const std::vector<double> &volume_, &area_, &field2_, &count_;
-    const std::vector<int>& slot_;
-    const Eigen::MatrixXd &field_sketch_, &one_sketch_;
-    const double total_;
-    const int rows_;
-    const bool exact_;
-    const std::vector<int>& bucket_;
-    const std::vector<float>& sign_;
     std::vector<std::vector<double>> volume_part_, field_part_, sum_part_;  // per column, component
     std::vector<double> chunk_sums_;  // add()'s sums per chunk (scratch, kept between steps)
-    // The sketched basis vectors, rows_ x kSketchBlock each: blocks rather than one matrix grown
+    // The sketched basis vectors, layout_->rows x kSketchBlock each: blocks rather than one matrix grown
     // by doubling, whose copy held the old and the new matrix at once (1.5x the final size: 150
     // bytes per vertex on the 1 M-face torus, whose processes run 212 steps).
     std::vector<Eigen::MatrixXd> blocks_;
