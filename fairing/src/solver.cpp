@@ -573,13 +573,14 @@ constexpr double kMultigridRows = 50000;
 // stiffness in brackets: bunny Loop x2 curvature 0.05 [0.27] 1.31 / 1.05 (16 / 8), 0.5 [0.84]
 // 2.06 / 1.52 (37 / 18), scale-dependent 0.05 [0.71] 1.45 / 1.28, 0.5 [2.2] 2.35 / 2.17, 2 [4.5]
 // 3.32 / 3.00; 1 M-face torus curvature 0.05 / 0.5 0.70 / 0.68, 1.05 / 0.99, scale-dependent
-// 0.05 [0.53] 0.59 / 0.63 (the one loss, 9 / 7 iterations), 0.5 0.83 / 0.83, 2 1.18 / 1.11;
+// 0.05 [0.53] 0.59 / 0.63 (a loss, 9 / 7 iterations), 0.5 0.83 / 0.83, 2 1.18 / 1.11;
 // raw-triangulation dragon (1.3 M faces) curvature 0.05 2.18 / 1.83, 0.5 [1.3] 3.25 / 2.67,
 // 2.546 [3.0] (its one-click step) 4.82 / 3.70 (110 / 61), scale-dependent 0.05 / 0.5 / 2
 // 2.10 / 1.85, 3.23 / 2.85, 4.52 / 3.22; the study's sphere 3 k and 51 k, flat patch, fandisk
-// and camel at 0.05 and 1: Gauss-Seidel 0-30 % faster in all 20 cases but one tie. So every
-// weighted operator sweeps; the umbrella keeps complex Jacobi (above: its iterations drop by
-// 10-25 % only).
+// and camel at 0.05 and 1: Gauss-Seidel faster in 18 of 20 (by up to 28 %), one tie, one loss
+// (the flat patch's curvature 0.05, 1.3 / 1.4 ms); over all 36 cases 32 faster, 2 ties and 2
+// losses of 6-8 % on the mildest steps. So every weighted operator sweeps; the umbrella keeps
+// complex Jacobi (above: its iterations drop by 10-25 % only).
 
 // A later step of the same run (settings.previous: an L^2 step re-assembled on the smoothed
 // mesh) takes the V-cycle when the previous one did, or when complex Jacobi (or Gauss-Seidel,
