@@ -27,6 +27,9 @@ p.add_argument("--results", default="")
 p.add_argument("--jobs", type=int, default=2)
 p.add_argument("--seed", type=int, default=1,
                help="the noise's seed (default 1, the study's); other seeds check the figures on other draws")
+p.add_argument("--noise", default="",
+               help="noise cases instead of the study's four, comma-separated TAG:SIGMA:KIND "
+                    "(SIGMA in mean edges, KIND normal or iso), e.g. n0.05:0.05:normal")
 p.add_argument("--no-cost", action="store_true", help="skip the >= 1 M-face cost row")
 p.add_argument("--peers-from", default="", help="passed to denoise_report.py (with --ours-only)")
 p.add_argument("--auto-from", default="",
@@ -118,6 +121,13 @@ FULL = ["sphere2_3k", "sphere2_13k", "sphere2_51k", "torus_10k", "plane_3k", "el
 COST_MESHES = [("bunny_loop2_1.2m", scan_loop("bunny00", 2), "mesh"),
                ("torus_1m", lambda o: run([DT, "make", "torus", "1000000", o]), "torus:1:0.4")]
 NOISES = [("n0.1", 0.1, "normal"), ("n0.25", 0.25, "normal"), ("n0.5", 0.5, "normal"), ("iso0.25", 0.25, "iso")]
+if a.noise:
+    try:
+        NOISES = [(t, float(x), k) for t, x, k in (c.split(":") for c in a.noise.split(","))]
+    except ValueError:
+        sys.exit("denoise: --noise takes TAG:SIGMA:KIND,... (e.g. n0.05:0.05:normal), not %r" % a.noise)
+    if any(k not in ("normal", "iso") or not x > 0 or not re.fullmatch(r"[A-Za-z0-9._-]+", t) for t, x, k in NOISES):
+        sys.exit("denoise: --noise: each case is TAG:SIGMA:KIND with a plain TAG, SIGMA > 0 and KIND normal or iso")
 
 only = [x for x in a.only.split(",") if x]
 names = only or (QUICK if a.quick else FULL)
@@ -418,15 +428,16 @@ def main():
         log("cost rows on %s" % ", ".join(m[0] for m in COST_MESHES))
         rows.extend(cost_rows(auto_cli, auto_tool))
     # An --only run keeps its own file: it must not replace the full run's rows (--peers-from).
-    rows_path = os.path.join(runs_dir, "denoise-%s%s%s%s.jsonl" % (
+    rows_path = os.path.join(runs_dir, "denoise-%s%s%s%s%s.jsonl" % (
         "only-" + "+".join(only) if only else "full", "-quick" if a.quick else "",
-        "-ours" if a.ours_only else "-auto" if a.auto_from else "", "" if a.seed == 1 else "-s%d" % a.seed))
+        "-ours" if a.ours_only else "-auto" if a.auto_from else "", "" if a.seed == 1 else "-s%d" % a.seed,
+        "-noise-" + "+".join(t for t, _, _ in NOISES) if a.noise else ""))
     meta = dict(date=time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), machine=platform.node(),
                 cores=os.cpu_count(), load_after=os.getloadavg(), minutes=(time.time() - started) / 60,
                 git=git_at_start,
                 command="bench/denoise.sh" + (" --quick" if a.quick else "") + (" --only " + a.only if only else "")
                         + (" --ours-only" if a.ours_only else "") + (" --auto-from ..." if a.auto_from else "")
-                        + (" --seed %d" % a.seed if a.seed != 1 else ""),
+                        + (" --seed %d" % a.seed if a.seed != 1 else "") + (" --noise " + a.noise if a.noise else ""),
                 seed=a.seed,
                 auto_cli=auto_cli, auto_engine=auto_tool, task_minutes={k: round(v / 60, 2) for k, v in spent.items()}, meshes=[dict(name=m["name"], kind=dict(ALL_KIND)[m["name"]], truth=m["truth"], **m["info"])
                                            for m in meshes], noises=NOISES, failures=failures,

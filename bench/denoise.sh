@@ -7,7 +7,7 @@
 #
 #   bench/denoise.sh [--quick] [--only NAMES] [--results DIR] [--jobs N] [--seed N] [--build DIR]
 #                    [--no-install] [--no-cost] [--ours-only --peers-from RUN.jsonl]
-#                    [--auto-from RUN.jsonl]
+#                    [--auto-from RUN.jsonl] [--noise CASES]
 #
 #   --quick        4 small meshes (sphere 3k, flat patch 3k, elephant 6k, fandisk 13k), no cost row
 #   --only NAMES   only these meshes, comma-separated (names: bench/denoise.py, ALL)
@@ -16,6 +16,9 @@
 #   --jobs N       parallel runs (default 2; the runs themselves are single-threaded)
 #   --seed N       the noise's seed (default 1, the study's; other seeds are other draws of the
 #                  same noise, their inputs and full rows kept apart in the cache)
+#   --noise CASES  noise cases instead of the study's four (n0.1, n0.25, n0.5 along the normals,
+#                  iso0.25 in all directions): TAG:SIGMA:KIND,... with SIGMA in mean edges and
+#                  KIND normal or iso, e.g. n0.05:0.05:normal,n1.0:1.0:normal,iso0.5:0.5:iso
 #   --build DIR    build directory (default $FAIRING_CACHE/bench-build, as bench/run.sh)
 #   --no-install   do not apt-get install the peers (libcgal-dev libopenmesh-dev gnuplot-nox)
 #   --no-cost      skip the >= 1 M-face cost rows (Loop x2 bunny, 1 M-face torus)
@@ -38,13 +41,13 @@ while [ $# -gt 0 ]; do
     --quick|--no-cost|--ours-only) args+=("$1") ;;
     --peers-from|--auto-from) [ $# -ge 2 ] || { echo "denoise.sh: $1 needs a value" >&2; exit 2; }
       args+=("$1" "$(cd "$(dirname "$2")" && pwd)/$(basename "$2")"); shift ;;
-    --only|--jobs|--seed) [ $# -ge 2 ] || { echo "denoise.sh: $1 needs a value" >&2; exit 2; }
+    --only|--jobs|--seed|--noise) [ $# -ge 2 ] || { echo "denoise.sh: $1 needs a value" >&2; exit 2; }
       args+=("$1" "$2"); shift ;;
     --results) [ $# -ge 2 ] || { echo "denoise.sh: $1 needs a value" >&2; exit 2; }
       mkdir -p "$2"; args+=(--results "$(cd "$2" && pwd)"); shift ;;
     --build) [ $# -ge 2 ] || { echo "denoise.sh: $1 needs a value" >&2; exit 2; }
       bb=$2; shift ;;
-    -h|--help) sed -n 2,28p "$0"; exit 0 ;;
+    -h|--help) sed -n 2,31p "$0"; exit 0 ;;
     *) echo "denoise.sh: unknown option $1" >&2; exit 2 ;;
   esac
   shift
