@@ -92,8 +92,9 @@ void addFilterParameters(CLI::App& app, CommandLine& cl, const Values& d)
            "[timeStep] auto (or 0): chosen from the mesh, by the noise it estimates along the "
            "normals (Stein's unbiased risk estimate; --json reports time_step and "
            "noise_level; a scan's finest detail counts as noise too, so clean or barely noisy "
-           "detailed scans come out smoother than needed: give T there). Or a dimensionless time step T > 0: lambda*dt = T * (mean "
-           "edge)^(2*order) for scale-dependent and curvature, T for umbrella and --normalized "
+           "detailed scans come out smoother than needed: give T there). Or a dimensionless "
+           "time step T > 0: lambda*dt = T * (mean edge)^(2*order) for scale-dependent and "
+           "curvature, T for umbrella and --normalized "
            "(with L^2, 10, 2.5 and 22.5 remove noise of about one edge length). Default: auto")
         ->type_name("auto|T")
         ->check(CLI::Validator(

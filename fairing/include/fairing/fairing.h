@@ -213,7 +213,7 @@ struct Result {
     double mean_edge_length = 0;    // of the input, in its units (the time step's length unit)
     // Automatic strength only (0 otherwise): the estimated standard deviation of the noise
     // along the normals, in the mesh's units and in mean edge lengths of the input (which normal
-    // noise lengthens: by 6 % at a quarter edge of noise, 22 % at half an edge).
+    // noise lengthens: by 6-8 % at a quarter edge of noise, 21-25 % at half an edge).
     double noise_level = 0;
     double noise_level_edges = 0;
     // Automatic strength only: tr H / N of the chosen filter H on the free vertices (its
