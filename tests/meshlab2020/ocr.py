@@ -60,8 +60,12 @@ def main():
         g = sys.argv[i + 1]
         del sys.argv[i:i + 2]
         wh, x, y = g.split("+")
-        w, h = wh.split("x")
-        CROP = (int(w), int(h), int(x), int(y))
+        w, h = (int(v) for v in wh.split("x"))
+        x, y = int(x), int(y)
+        # A window partly off the screen (a dialog taller than the space left for it starts at
+        # a negative y): read its visible part, in screen coordinates.
+        w, h = w + min(x, 0), h + min(y, 0)
+        CROP = (w, h, max(x, 0), max(y, 0))
     if len(sys.argv) == 2:
         for words in lines(sys.argv[1]):
             print(" ".join(w for w, _ in words))
