@@ -121,6 +121,7 @@ FULL = ["sphere2_3k", "sphere2_13k", "sphere2_51k", "torus_10k", "plane_3k", "el
 COST_MESHES = [("bunny_loop2_1.2m", scan_loop("bunny00", 2), "mesh"),
                ("torus_1m", lambda o: run([DT, "make", "torus", "1000000", o]), "torus:1:0.4")]
 NOISES = [("n0.1", 0.1, "normal"), ("n0.25", 0.25, "normal"), ("n0.5", 0.5, "normal"), ("iso0.25", 0.25, "iso")]
+STUDY_NOISES = list(NOISES)
 if a.noise:
     try:
         NOISES = [(t, float(x), k) for t, x, k in (c.split(":") for c in a.noise.split(","))]
@@ -143,7 +144,10 @@ def prepare(name, make, truth):
     info = jlines(run([DT, "info", clean]).stdout)[0]
     cases = []
     for tag, sigma, kind in NOISES:
-        noisy = os.path.join(meshes_dir, "dn_%s_%s%s.ply" % (name, tag, "" if a.seed == 1 else "_s%d" % a.seed))
+        # An --noise case other than the study's names its input by sigma and kind too: a tag
+        # reused with another sigma must not pick up the cached input of the first.
+        own = "" if (tag, sigma, kind) in STUDY_NOISES else "_%r%s" % (sigma, kind)
+        noisy = os.path.join(meshes_dir, "dn_%s_%s%s%s.ply" % (name, tag, own, "" if a.seed == 1 else "_s%d" % a.seed))
         if not os.path.exists(noisy):
             run([DT, "noise", clean, noisy, repr(sigma), str(a.seed), kind])
         cases.append(dict(noise=tag, sigma=sigma, noise_kind=kind, noisy=noisy))

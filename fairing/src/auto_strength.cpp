@@ -1106,9 +1106,9 @@ private:
     std::shared_ptr<const Layout> layout_;
     std::vector<std::vector<double>> volume_part_, field_part_, sum_part_;  // per column, component
     std::vector<double> chunk_sums_;  // add()'s sums per chunk (scratch, kept between steps)
-    // The sketched basis vectors, layout_->rows x kSketchBlock each: blocks rather than one matrix grown
-    // by doubling, whose copy held the old and the new matrix at once (1.5x the final size: 150
-    // bytes per vertex on the 1 M-face torus, whose processes run 212 steps).
+    // The sketched basis vectors, layout_->rows x kSketchBlock each: blocks rather than one
+    // matrix grown by doubling, whose copy held the old and the new matrix at once (1.5x the final
+    // size: 150 bytes per vertex on the 1 M-face torus, whose processes run 212 steps).
     std::vector<Eigen::MatrixXd> blocks_;
     double* column_data(Eigen::Index column) {
         return blocks_[static_cast<std::size_t>(column / kSketchBlock)].col(column % kSketchBlock).data();

@@ -171,10 +171,10 @@ Positions complex_solve(const LinearSystem& s, const Positions& start, bool gaus
 // Automatic sweeps for the weighted operators at every strength, the mildest included (their
 // iterations halve there too: solver.cpp), and keeps the umbrella on its complex diagonal.
 TEST(ComplexFactor, AutomaticSweepsForWeightedOperatorsAtEveryStrength) {
-    for (Operator op : meshes::kOperators)
+    for (Operator op : meshes::kOperators) {
+        const Case c = make(op, 3);
         for (double t : {0.05, 1.0, 22.5}) {
             SCOPED_TRACE(testing::Message() << fairing::to_string(op) << " time step " << t);
-            const Case c = make(op, 3);
             const LinearSystem s = l2_system(c, l2_lambda(c, op, t),
                                              std::vector<char>(c.op.size(), 1));
             Positions x = c.mesh.positions;
@@ -183,6 +183,7 @@ TEST(ComplexFactor, AutomaticSweepsForWeightedOperatorsAtEveryStrength) {
             EXPECT_TRUE(stats.complex_factor);
             EXPECT_EQ(stats.gauss_seidel, op != Operator::Umbrella);
         }
+    }
 }
 
 TEST(ComplexFactor, GaussSeidelGivesJacobisResultInFewerIterations) {

@@ -185,8 +185,8 @@ void addToolOptions(CLI::App& app, CommandLine& cl)
               "aggregation V-cycle, whose iterations barely grow with the time step (first order, "
               "and L^2 without vertex weights). auto solves an L^2 step without vertex weights as "
               "one complex first-order solve, Re (M + i sqrt(dt) K)^-1 b (preconditioned by "
-              "symmetric Gauss-Seidel, the umbrella by its complex diagonal); with weights it starts "
-              "with jacobi and switches when the solve turns out heavy; on meshes of 50,000 "
+              "symmetric Gauss-Seidel, the umbrella by its complex diagonal); with weights it "
+              "starts with jacobi and switches when the solve turns out heavy; on meshes of 50,000 "
               "vertices or more it takes multigrid for strong steps. Default: auto",
               {"auto", "jacobi", "factored", "multigrid"}, "NAME");
     app.add_option("--threads", cl.threads,
