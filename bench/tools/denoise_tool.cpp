@@ -13,7 +13,7 @@
 //   eval CLEAN TRUTH INPUT RESULT...   one JSON line per RESULT: rms, max (in CLEAN's mean
 //                                      edges), volume_change (percent, vs INPUT)
 //   sweep INPUT CLEAN TRUTH OP ORDER STEPS X0 [--ts T1,T2,...] [--auto|--at-chosen]
-//         [--no-volume|--scale] [--freeze]
+//         [--no-volume|--scale] [--freeze] [--keep-drift]
 //                                      runs fairing::fair() in-process on INPUT (rounded to
 //                                      float, as the CLI and MeshLab read it) and prints one JSON
 //                                      line per time step (rms: to the surface; rms_normal:
@@ -27,7 +27,8 @@
 //                                      else; for the cost row); --no-volume: volume not
 //                                      restored; --scale: restored by the paper's scaling
 //                                      instead of the default normal offset; --freeze: the
-//                                      first step's operator for every step (section 4.3)
+//                                      first step's operator for every step (section 4.3);
+//                                      --keep-drift: Options::cancel_drift off
 // TRUTH: sphere | plane | torus:R:r | mesh (the CLEAN mesh's surface).
 #include "bench_mesh.h"
 #include "denoise_shapes.h"
@@ -63,6 +64,12 @@ template <class R> auto strength_seconds(const R& r, int) -> decltype(double(r.s
 template <class R> double strength_seconds(const R&, long) { return std::nan(""); }
 template <class R> auto strength_steps(const R& r, int) -> decltype(int(r.strength_iterations)) { return r.strength_iterations; }
 template <class R> int strength_steps(const R&, long) { return 0; }
+// Options::cancel_drift = value, on an engine that has it (false: it has not).
+template <class O> auto set_cancel_drift(O& o, bool value) -> decltype(o.cancel_drift = value, bool()) {
+    o.cancel_drift = value;
+    return true;
+}
+template <class O> bool set_cancel_drift(O&, int) { return false; }
 
 std::string num(double x) {
     if (!std::isfinite(x)) return "null";
@@ -170,6 +177,10 @@ int sweep(int argc, char** argv) {
         else if (a == "--no-volume") o.preserve_volume = false;
         else if (a == "--scale") o.restoration = fairing::VolumeRestoration::Scale;
         else if (a == "--freeze") o.freeze_operator = true;
+        else if (a == "--keep-drift") {
+            if (!set_cancel_drift(o, false))
+                throw std::runtime_error("sweep: this engine has no Options::cancel_drift");
+        }
         else if (a == "--ts" && i + 1 < argc) {
             std::stringstream ss(argv[++i]);
             std::string x;

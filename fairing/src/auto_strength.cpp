@@ -734,6 +734,10 @@ constexpr int kGrid = 16;
 // Restored components whose restoration the sketch applies in its own space (the largest ones;
 // see Sketch::restored): each holds two sketched fields of kSketch rows.
 constexpr int kSketchedComponents = 16;
+// Sums per restored component in Sketch::add: a . n.r, s . n.r and 1 . n.r per column; then
+// per sketched component, drift-cancelled or not, its three moments m_d per column.
+constexpr int kComponentSums = 9;
+constexpr int kMomentSums = 9 * kSketchedComponents;
 
 // A sketch of the normal components n_i . r_i: CountSketch (Charikar, Chen & Farach-Colton
 // 2002) of every basis vector's normal part, so that |sketch of r(lambda)|^2 estimates
@@ -751,10 +755,23 @@ public:
     // rescaling, 1 on the free vertices for a normal offset, by the multiple that restores the
     // volume (see restored()). Three linear functionals of r per component, kept exactly beside
     // the sketch: a . n.r (the volume lost), s . n.r and 1 . n.r (a_i: vertex areas).
+    //
+    //
+    // A component whose drift is cancelled (Options::cancel_drift, `anchored`) is then translated
+    // by the least-squares translation of its normal residual rho (after the restoration):
+    // tau = P^-1 sum a_i n_i rho_i, P = sum a_i n_i n_i^T, and loses n_i . tau. With the
+    // restoration's residual (1 - beta) s + beta n.r or n.r - t, that is
+    // tau = P^-1 (beta m + (1 - beta) q_s) or P^-1 (m - t q_1), where m = sum a n n.r are three
+    // more functionals per column and q_s = sum a n s, q_1 = sum a n constants; n . tau is
+    // formed in the sketch's space from the sketched normal components n_d of the component.
+    // Only the kSketchedComponents largest are so modelled (a bounded memory; the translation
+    // of smaller ones is left in the residual).
     struct Restoration {
         std::vector<int> component;  // per data vertex, -1: not restored
         std::vector<double> field, area;
         std::vector<char> offset;  // per component, as StrengthProblem::offset
+        std::vector<char> anchored;  // per component: its drift cancelled
+        const Positions* normals = nullptr;
         int components = 0;
     };
 
@@ -794,7 +811,8 @@ public:
         const int chunks = nc <= kSketchChunkComponents ? kSketchChunks : 1;
         const int per_chunk = (n + chunks - 1) / chunks;
         const std::size_t buckets = 3 * static_cast<std::size_t>(layout_->rows);
-        const std::size_t stride = buckets + 9 * static_cast<std::size_t>(nc) + 6;
+        const std::size_t stride =
+            buckets + kComponentSums * static_cast<std::size_t>(nc) + kMomentSums + 6;
         chunk_sums_.assign(chunks * stride, 0.0);
         if (twin) twin->chunk_sums_.assign(chunks * stride, 0.0);
         const int* bucket = layout_->bucket.data();
@@ -803,6 +821,9 @@ public:
         const int components_known = static_cast<int>(layout_->restoration.component.size());
         const double* area = layout_->restoration.area.data();
         const double* field = layout_->restoration.field.data();
+        const char* anchored = layout_->restoration.anchored.data();
+        const bool any_anchored = layout_->anchored;
+        const int* component_slot = layout_->slot.data();
         const signed char* b_sign = probe ? probe->data() : nullptr;
         const double* nv = normals.data();
         double* v = u.current.data();
@@ -817,7 +838,8 @@ public:
         for (int chunk = 0; chunk < chunks; ++chunk) {
             double* to_bucket = sums + chunk * stride;
             double* to_component = to_bucket + buckets;
-            double* to_probe = to_component + 9 * static_cast<std::size_t>(nc);
+            double* to_moment = to_component + kComponentSums * static_cast<std::size_t>(nc);
+            double* to_probe = to_moment + kMomentSums;
             double* twin_bucket = twin_sums ? twin_sums + chunk * stride : nullptr;
             double* twin_component = twin_bucket ? twin_bucket + buckets : nullptr;
             const int end = std::min(n, (chunk + 1) * per_chunk);
@@ -833,6 +855,9 @@ public:
                         if (bi != 0 && partner_active[c]) to_probe[3 + c] += bi * nv[3 * i + c] * vc;
                     }
                 }
+                // A drift-cancelled sketched component's vertex (Restoration, "tau").
+                const int moment_slot =
+                    k >= 0 && any_anchored && anchored[k] ? component_slot[k] : -1;
                 if (v_twin) {
                     double ti[3];
                     for (int c = 0; c < 3; ++c) ti[c] = settle(*twin_u, free, v_twin, i, c);
@@ -840,10 +865,16 @@ public:
                         accumulate(twin_slot, b, k, sign[i], k >= 0 ? area[i] : 0.0,
                                    k >= 0 ? field[i] : 0.0, nv + 3 * i, ti, twin_bucket,
                                    twin_component, nullptr, 0);
+                    if (moment_slot >= 0)
+                        add_moments(twin_slot, area[i], nv + 3 * i, ti,
+                                    twin_component + kComponentSums * static_cast<std::size_t>(nc) +
+                                        9 * moment_slot);
                 }
                 if (b < 0 && k < 0 && bi == 0) continue;
                 accumulate(slot, b, k, sign[i], k >= 0 ? area[i] : 0.0, k >= 0 ? field[i] : 0.0,
                            nv + 3 * i, vi, to_bucket, to_component, to_probe, bi);
+                if (moment_slot >= 0)
+                    add_moments(slot, area[i], nv + 3 * i, vi, to_moment + 9 * moment_slot);
             }
         }
         u.pending = false;
@@ -858,7 +889,8 @@ public:
         std::array<double, 3> partner_sum{{0, 0, 0}};
         for (int chunk = 0; chunk < chunks; ++chunk) {
             const double* from_probe =
-                sums + chunk * stride + buckets + 9 * static_cast<std::size_t>(nc);
+                sums + chunk * stride + buckets + kComponentSums * static_cast<std::size_t>(nc) +
+                kMomentSums;
             for (int c = 0; c < 3; ++c) partner_sum[c] += from_probe[3 + c];
         }
         for (int c = 0; c < 3; ++c)
@@ -929,20 +961,34 @@ private:
             to_component[9 * k + 6 + c] += nv_c;
         }
     }
+    // A drift-cancelled component's vertex: its part of m_d = sum a n_d n.r.
+    static void add_moments(const std::array<Eigen::Index, 3>& slot, double area, const double* n,
+                            const double* v, double* to_moment) {
+        for (int c = 0; c < 3; ++c) {
+            if (slot[c] < 0) continue;
+            const double anv_c = area * n[c] * v[c];
+            for (int d = 0; d < 3; ++d) to_moment[3 * c + d] += n[d] * anv_c;
+        }
+    }
     // The chunks' sums added in chunk order into the columns of `slot` and their component
     // parts; returns the probe's sums b n . v per column.
     std::array<double, 3> close_columns(const std::array<Eigen::Index, 3>& slot, int chunks,
                                         std::size_t stride, const double* sums) {
         const int nc = layout_->restoration.components;
         const std::size_t buckets = 3 * static_cast<std::size_t>(layout_->rows);
-        std::array<std::vector<double>, 3> by_volume, by_field, by_sum;
+        const std::size_t slots = layout_->field_sketch.cols();
+        std::array<std::vector<double>, 3> by_volume, by_field, by_sum, by_moment;
         std::array<double, 3> probe_sum{{0, 0, 0}};
-        for (int c = 0; c < 3; ++c) by_volume[c].assign(slot[c] >= 0 ? nc : 0, 0.0);
+        for (int c = 0; c < 3; ++c) {
+            by_volume[c].assign(slot[c] >= 0 ? nc : 0, 0.0);
+            by_moment[c].assign(slot[c] >= 0 && layout_->anchored ? 3 * slots : 0, 0.0);
+        }
         by_field = by_sum = by_volume;
         for (int chunk = 0; chunk < chunks; ++chunk) {
             const double* from_bucket = sums + chunk * stride;
             const double* from_component = from_bucket + buckets;
-            const double* from_probe = from_component + 9 * static_cast<std::size_t>(nc);
+            const double* from_moment = from_component + kComponentSums * static_cast<std::size_t>(nc);
+            const double* from_probe = from_moment + kMomentSums;
             for (int c = 0; c < 3; ++c) {
                 if (slot[c] < 0) continue;
                 double* column = column_data(slot[c]);
@@ -952,6 +998,10 @@ private:
                     by_field[c][k] += from_component[9 * k + 3 + c];
                     by_sum[c][k] += from_component[9 * k + 6 + c];
                 }
+                if (!by_moment[c].empty())
+                    for (std::size_t m = 0; m < slots; ++m)
+                        for (int d = 0; d < 3; ++d)
+                            by_moment[c][3 * m + d] += from_moment[9 * m + 3 * c + d];
                 probe_sum[c] += from_probe[c];
             }
         }
@@ -960,6 +1010,7 @@ private:
             volume_part_.push_back(std::move(by_volume[c]));
             field_part_.push_back(std::move(by_field[c]));
             sum_part_.push_back(std::move(by_sum[c]));
+            moment_part_.push_back(std::move(by_moment[c]));
         }
         return probe_sum;
     }
@@ -1003,6 +1054,7 @@ private:
         double extra = 0, weighted_beta = 0, covered = 0;
         const Eigen::Index fields = l.field_sketch.cols();
         Eigen::VectorXd along_field = Eigen::VectorXd::Zero(fields), along_one = along_field;
+        Eigen::VectorXd along_normal = Eigen::VectorXd::Zero(l.anchored ? 3 * fields : 0);
         for (int k = 0; k < l.restoration.components; ++k) {
             if (!(l.volume[k] > 0)) continue;
             double by_volume = 0, by_field = 0, by_sum = 0;
@@ -1017,14 +1069,25 @@ private:
             const double beta = 1 / left;
             const int slot = l.slot[k];
             covered += l.count[k];
+            // The drift's translation (Restoration, "tau"): m = sum a n n.r first.
+            Eigen::Vector3d m = Eigen::Vector3d::Zero();
+            const bool anchored = slot >= 0 && l.restoration.anchored[k];
+            if (anchored)
+                for (Eigen::Index j = 0; j < used_; ++j)
+                    for (int d = 0; d < 3; ++d) m(d) += moment_part_[j][3 * slot + d] * y(j);
             if (offset == 1 ||
                 (offset == 2 && std::abs(beta * beta * beta - 1) <= kMaxOffsetChange)) {
                 const double t = by_volume / l.area[k];
                 if (slot >= 0) along_one(slot) = -t;
                 else extra += t * t * l.count[k] - 2 * t * by_sum;
+                if (anchored)
+                    along_normal.segment<3>(3 * slot) = -l.normal_moment[k].solve(m - t * l.sum_normal[k]);
                 weighted_beta += l.count[k];
                 continue;
             }
+            if (anchored)
+                along_normal.segment<3>(3 * slot) =
+                    -l.normal_moment[k].solve(beta * m + (1 - beta) * l.field_normal[k]);
             if (slot >= 0) along_field(slot) = 1 - beta;
             else extra += (1 - beta) * (1 - beta) * l.field2[k] + 2 * beta * (1 - beta) * by_field;
             weighted_beta += beta * l.count[k];
@@ -1032,8 +1095,9 @@ private:
         if (covered == 0) return sketched.squaredNorm();
         gain = (weighted_beta + (l.total - covered)) / l.total;
         const double beta_all = covered == l.total ? weighted_beta / covered : 1.0;
-        const Eigen::VectorXd residual =
+        Eigen::VectorXd residual =
             beta_all * sketched + l.field_sketch * along_field + l.one_sketch * along_one;
+        if (l.anchored) residual += l.normal_sketch * along_normal;
         return extra + residual.squaredNorm();
     }
 
@@ -1042,6 +1106,11 @@ private:
     struct Layout {
         Restoration restoration;
         std::vector<double> volume, area, field2, count;  // per component: a . s, sum a, |s|^2, N
+        // Per drift-cancelled component: P = sum a n n^T (factored), q_s = sum a n s, q_1 = sum a n.
+        std::vector<Eigen::LDLT<Eigen::Matrix3d>> normal_moment;
+        std::vector<Eigen::Vector3d> field_normal, sum_normal;
+        bool anchored = false;  // some sketched component is (Restoration::anchored)
+        Eigen::MatrixXd normal_sketch;  // with anchored: n_d of each slot's vertices, 3 per slot
         // The kSketchedComponents largest components' slots (-1: not sketched) and the sketches
         // of their fields s and indicators 1, one column per slot.
         std::vector<int> slot;
@@ -1093,18 +1162,34 @@ private:
         for (int s = 0; s < sketched; ++s) l.slot[by_size[s]] = s;
         l.field_sketch = Eigen::MatrixXd::Zero(l.rows, sketched);
         l.one_sketch = Eigen::MatrixXd::Zero(l.rows, sketched);
+        for (int k = 0; k < nc; ++k)
+            l.anchored = l.anchored || (l.slot[k] >= 0 && !r.anchored.empty() && r.anchored[k]);
+        std::vector<Eigen::Matrix3d> moments(l.anchored ? nc : 0, Eigen::Matrix3d::Zero());
+        l.field_normal.assign(nc, Eigen::Vector3d::Zero());
+        l.sum_normal.assign(nc, Eigen::Vector3d::Zero());
+        if (l.anchored) l.normal_sketch = Eigen::MatrixXd::Zero(l.rows, 3 * sketched);
         for (std::size_t i = 0; i < r.component.size(); ++i) {
             const int k = r.component[i];
             if (k < 0 || l.slot[k] < 0 || l.bucket[i] < 0) continue;
             l.field_sketch(l.bucket[i], l.slot[k]) += static_cast<double>(l.sign[i]) * r.field[i];
             l.one_sketch(l.bucket[i], l.slot[k]) += static_cast<double>(l.sign[i]);
+            if (!l.anchored || !r.anchored[k]) continue;
+            const Eigen::Vector3d n = r.normals->row(i).transpose();
+            for (int d = 0; d < 3; ++d)
+                l.normal_sketch(l.bucket[i], 3 * l.slot[k] + d) += static_cast<double>(l.sign[i]) * n(d);
+            moments[k] += r.area[i] * n * n.transpose();
+            l.field_normal[k] += r.area[i] * r.field[i] * n;
+            l.sum_normal[k] += r.area[i] * n;
         }
+        for (const Eigen::Matrix3d& p : moments) l.normal_moment.emplace_back(p);
         return made;
     }
     explicit Sketch(std::shared_ptr<const Layout> layout) : layout_(std::move(layout)) {}
 
     std::shared_ptr<const Layout> layout_;
     std::vector<std::vector<double>> volume_part_, field_part_, sum_part_;  // per column, component
+    // Per column, 3 per sketched component (its m_d; 0 unless anchored); empty when none is.
+    std::vector<std::vector<double>> moment_part_;
     std::vector<double> chunk_sums_;  // add()'s sums per chunk (scratch, kept between steps)
     // The sketched basis vectors, layout_->rows x kSketchBlock each: blocks rather than one
     // matrix grown by doubling, whose copy held the old and the new matrix at once (1.5x the final
@@ -1375,6 +1460,10 @@ Sketch::Restoration restoration(const StrengthProblem& p, const Positions& norma
     }
     r.offset = p.offset;
     r.components = static_cast<int>(p.offset.size());
+    r.anchored.assign(p.offset.size(), 0);
+    for (std::size_t k = 0; k < p.offset.size(); ++k)
+        r.anchored[k] = p.cancel_drift && p.offset[k] != 1 && found[k];
+    r.normals = &normals;
     return r;
 }
 

@@ -189,6 +189,8 @@ private:
                        double lambda_dt, const char* system);
     void record(const SolveStats& stats, int step, const char* system);
     void restore();
+    bool cancels_drift(std::size_t component) const;
+    void cancel_drift(const Eigen::RowVector3d& origin);  // Options::cancel_drift
     void warn(const std::string& w) { result_.warnings.push_back(w); }
     // Soft weight of row i; virtual vertices (i >= n_) have none.
     double weight(int i) const { return i < n_ && !weight_.empty() ? weight_[i] : 1.0; }
@@ -432,6 +434,46 @@ void Run::restore() {
     }
 }
 
+bool Run::cancels_drift(std::size_t c) const {
+    return options_.cancel_drift && options_.preserve_volume &&
+           options_.op == Operator::CurvatureFlow && result_.components[c].closed &&
+           !result_.components[c].has_fixed;
+}
+
+// The translation t minimizing sum_f A_f (n_f . (d_f - t))^2 over the component's faces, d_f the
+// mean displacement of the face's vertices from the input, A_f n_f the face's area vector:
+// (sum A_f n_f n_f^T) t = sum A_f n_f (n_f . d_f).
+void Run::cancel_drift(const Eigen::RowVector3d& origin) {
+    if (result_.steps == 0) return;
+    const auto& components = he_.components();
+    const std::vector<Triangle>& faces = he_.faces();
+    for (std::size_t c = 0; c < components.size(); ++c) {
+        if (!cancels_drift(c)) continue;
+        Eigen::Matrix3d normal_moment = Eigen::Matrix3d::Zero();
+        Vec3 along_normals = Vec3::Zero();
+        for (int f : components[c].faces) {
+            const Triangle& t = faces[f];
+            const Vec3 a = detail::row(x_, t[0]);
+            const Vec3 area_vector = 0.5 * (detail::row(x_, t[1]) - a).cross(detail::row(x_, t[2]) - a);
+            const double area = area_vector.norm();
+            if (!(area > 0)) continue;
+            Vec3 d = Vec3::Zero();
+            for (int k = 0; k < 3; ++k)
+                d += (input_row(t[k]) - origin).transpose() - detail::row(x_, t[k]);
+            const Vec3 n = area_vector / area;
+            normal_moment += area * n * n.transpose();
+            along_normals += area * n * n.dot(d / 3);
+        }
+        const Eigen::LDLT<Eigen::Matrix3d> solve(normal_moment);
+        const Vec3 shift = solve.solve(along_normals);
+        // A flat or degenerate component has no well-posed translation normal to it.
+        if (solve.info() != Eigen::Success || !std::isfinite(shift.squaredNorm()) ||
+            !(solve.vectorD().minCoeff() > 1e-9 * solve.vectorD().maxCoeff()))
+            continue;
+        for (int v : components[c].vertices) x_.row(v) += shift.transpose();
+    }
+}
+
 void Run::check_input() {
     const ValidationReport& report = he_.report();
     result_.isolated_vertices = report.isolated_vertices;
@@ -595,6 +637,7 @@ void Run::choose_time_step() {
                                  : options_.restoration == VolumeRestoration::NormalOffset ? 2
                                                                                            : 0);
     }
+    problem.cancel_drift = options_.cancel_drift && options_.op == Operator::CurvatureFlow;
     if (options_.progress) problem.progress = [this](double f) { report_progress(kShare * f); };
     if (options_.op == Operator::Umbrella) release_pairing();  // never assembled again
     if (options_.op != Operator::Umbrella)  // weights of the positions: Monte-Carlo divergence
@@ -772,6 +815,7 @@ Result Run::run() {
     if (result_.automatic_time_step) release_free_memory();  // the estimate's vectors
     else time_step_ = options_.time_step.value_or(0);
     take_steps();
+    cancel_drift(origin);
     finish(origin);
     warn_about_input();
     return std::move(result_);

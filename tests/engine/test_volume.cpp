@@ -40,6 +40,7 @@ Options options(Operator op, int order, int steps, double time_step = 2.0) {
     o.steps = steps;
     o.time_step = time_step;
     o.preserve_volume = true;
+    o.cancel_drift = false;  // the restoration alone; the translation: the last test
     o.max_iterations = 20000;
     return o;
 }
@@ -284,4 +285,93 @@ TEST(Volume, GrossLossIsScaledEvenWithTheNormalOffset) {
             EXPECT_EQ(r.components[0].restoration, Restoration::Scale);
         }
     }
+}
+
+// The translation t minimizing sum_f A_f (n_f . (d_f - t))^2, d_f the mean displacement of face
+// f's vertices from `from` to `to`, A_f n_f its area vector (on `to`).
+Vec3 normal_translation(const Positions& from, const Positions& to, const std::vector<Triangle>& f) {
+    Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
+    Vec3 b = Vec3::Zero();
+    for (const Triangle& t : f) {
+        const Vec3 a = meshes::row(to, t[0]);
+        const Vec3 av = 0.5 * (meshes::row(to, t[1]) - a).cross(meshes::row(to, t[2]) - a);
+        const double area = av.norm();
+        const Vec3 n = av / area;
+        Vec3 d = Vec3::Zero();
+        for (int k = 0; k < 3; ++k) d += (meshes::row(to, t[k]) - meshes::row(from, t[k])) / 3;
+        m += area * n * n.transpose();
+        b += area * n * n.dot(d);
+    }
+    return m.ldlt().solve(b);
+}
+
+// Options::cancel_drift: the curvature flow's result is the same as without it but for one
+// translation per closed component without fixed vertices, after which the component's
+// displacement from the input has no translation left along its normals (least squares); its
+// volume stays restored. A component with a fixed vertex, the other operators and
+// preserve_volume = false are left exactly as without it.
+TEST(Volume, CancelDriftTakesTheTranslationOutOfTheCurvatureFlow) {
+    // A noisy two-density sphere (radius 1), a noisy box, and a noisy sphere with one fixed
+    // vertex, all far from the origin.
+    const Vec3 ca(40, -10, 5), cc(-5, 30, 12);
+    const TriangleMesh a = meshes::translated(
+        meshes::gaussian_radial_noise(meshes::two_density_sphere(2), 0.02, 21), ca);
+    const TriangleMesh b = meshes::translated(
+        meshes::box_noise(meshes::box(3, 0.5, 0.4, 0.3), 0.02, 13), Vec3(-30, 20, -7));
+    const TriangleMesh c = meshes::radial_noise(meshes::icosphere(2, 1.0, cc), 0.05, 17, cc);
+    const TriangleMesh m = meshes::merge(meshes::merge(a, b), c);
+    const int na = static_cast<int>(a.positions.rows());
+    const int nb = na + static_cast<int>(b.positions.rows());
+    const int n = static_cast<int>(m.positions.rows());
+    const std::vector<Triangle> fa = faces_in(m, 0, na), fb = faces_in(m, na, nb);
+    fairing::Constraints fixed;
+    fixed.fixed.assign(n, 0);
+    fixed.fixed[nb] = 1;
+    for (auto how : {fairing::VolumeRestoration::NormalOffset, fairing::VolumeRestoration::Scale}) {
+        for (int order : {1, 2}) {
+            for (int steps : {1, 3}) {
+                SCOPED_TRACE(testing::Message() << "order " << order << " steps " << steps
+                                                << " scale " << (how == fairing::VolumeRestoration::Scale));
+                Options o = options(Operator::CurvatureFlow, order, steps, order == 1 ? 4.0 : 400.0);
+                o.restoration = how;
+                o.cancel_drift = false;
+                const fairing::Result plain = fairing::fair(m, fixed, o);
+                o.cancel_drift = true;
+                const fairing::Result kept = fairing::fair(m, fixed, o);
+                for (int part = 0; part < 2; ++part) {
+                    const std::vector<Triangle>& f = part == 0 ? fa : fb;
+                    const int first = part == 0 ? 0 : na, last = part == 0 ? na : nb;
+                    const double size = part == 0 ? 2.0 : 0.7;
+                    EXPECT_LT(normal_translation(m.positions, kept.positions, f).norm(), 1e-11 * size);
+                    EXPECT_NEAR(meshes::volume(kept.positions, f), meshes::volume(m.positions, f),
+                                1e-12 * meshes::volume(m.positions, f));
+                    // One translation per component.
+                    const Vec3 shift = meshes::row(kept.positions, first) - meshes::row(plain.positions, first);
+                    double worst = 0;
+                    for (int i = first; i < last; ++i)
+                        worst = std::max(worst, (meshes::row(kept.positions, i) -
+                                                 meshes::row(plain.positions, i) - shift).norm());
+                    EXPECT_LT(worst, 1e-12 * size) << "component " << part;
+                }
+                // The noisy two-density sphere drifts without it (steps keep its area-weighted
+                // centroid, which the noise moves towards the denser half).
+                EXPECT_GT(normal_translation(m.positions, plain.positions, fa).norm(), 1e-5);
+                for (int i = nb; i < n; ++i) ASSERT_EQ(kept.positions.row(i), plain.positions.row(i));
+                ASSERT_EQ(kept.positions.row(nb), m.positions.row(nb));
+            }
+        }
+    }
+    for (Operator op : {Operator::Umbrella, Operator::ScaleDependent}) {
+        Options o = options(op, 2, 2);
+        o.cancel_drift = false;
+        const fairing::Result plain = fairing::fair(m, {}, o);
+        o.cancel_drift = true;
+        EXPECT_EQ(fairing::fair(m, {}, o).positions, plain.positions) << fairing::to_string(op);
+    }
+    Options o = options(Operator::CurvatureFlow, 2, 2, 400.0);
+    o.preserve_volume = false;
+    o.cancel_drift = false;
+    const fairing::Result plain = fairing::fair(m, {}, o);
+    o.cancel_drift = true;
+    EXPECT_EQ(fairing::fair(m, {}, o).positions, plain.positions);
 }

@@ -143,6 +143,10 @@ void addFilterParameters(CLI::App& app, CommandLine& cl, const Values& d)
               "its normal, the smallest correction; a loss above 10 % is scaled; what the "
               "filters do) or scale (section 3.2: about the centroid). Default: offset",
               {"offset", "scale"}, "HOW");
+    app.add_flag("--keep-drift", cl.keepDrift,
+                 "Curvature flow: do not translate closed components back by the least-squares "
+                 "translation of their displacement along the normals (the paper's flow as is: "
+                 "strong steps on unevenly sampled noisy meshes drift). Default: translated back");
     app.add_flag("--area", cl.area,
                  "[openInvariant=Area] Restore the surface area of open components (which "
                  "enclose no volume) after each step. Default: open components are not restored");
@@ -256,6 +260,7 @@ Values filterValues(const CommandLine& cl)
     v.preserveVolume = !cl.noVolume;
     v.volumeRestoration = cl.volumeRestoration == "scale" ? fairing::VolumeRestoration::Scale
                                                           : fairing::VolumeRestoration::NormalOffset;
+    v.cancelDrift = !cl.keepDrift;
     v.openInvariant = cl.area ? 1 : 0;
     v.boundaryMode = cl.boundary == "curve" ? 1 : cl.boundary == "virtual" ? 2 : 0;
     v.qualityWeights = cl.qualityWeights;

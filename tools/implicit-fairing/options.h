@@ -24,6 +24,7 @@ struct CommandLine {
     bool noVolume = false, area = false;
     std::string boundary = "fixed";          // fixed | curve | virtual
     std::string volumeRestoration = "offset";  // offset | scale
+    bool keepDrift = false;
     bool qualityWeights = false, invertWeights = false;
     bool freeze = false;
     double tolerance = 0;

@@ -80,7 +80,9 @@ struct Values {
     // Not a filter parameter: MeshLab 2020.09's meshlabserver asserts that a script lists every
     // parameter of the filter, so a new one would break every saved script. The filters use the
     // engine's default (the normal offset); the command-line tool and the engine offer both.
+    // cancelDrift likewise (Options::cancel_drift).
     fairing::VolumeRestoration volumeRestoration = fairing::VolumeRestoration::NormalOffset;
+    bool cancelDrift = true;
     int openInvariant = 0;
     int boundaryMode = 0;
     bool qualityWeights = false;
@@ -125,6 +127,7 @@ inline fairing::Options toOptions(fairing::Operator op, const Values& v) {
     o.normalized = integration == 2;
     o.preserve_volume = v.preserveVolume;
     o.restoration = v.volumeRestoration;
+    o.cancel_drift = v.cancelDrift;
     o.open_invariant = index(v.openInvariant, openInvariantLabels(), kOpenInvariant) == 1
                            ? fairing::OpenInvariant::Area
                            : fairing::OpenInvariant::None;
