@@ -86,14 +86,14 @@ QString FilterImplicitFairing::filterInfo(fairing_plugin::FilterId id) const
                   "neighbours weighted by 1/edge length): stays closer to the original shape and "
                   "almost keeps the triangle sizes. For irregular meshes whose sampling should "
                   "stay as it is (0.037 edge on a two-density sphere at noise 0.25, between the "
-                  "umbrella's 0.069 and the curvature flow's 0.023).");
+                  "umbrella's 0.069 and the curvature flow's 0.017).");
         break;
     case FP_CURVATURE_FLOW:
         what = tr("<b>Curvature flow</b> (eq. 14, cotangent weights): vertices move along the "
                   "normal by the mean curvature, so they do not slide over the surface and "
                   "spheres stay spheres and flat regions stay flat. <b>Pick it when only the shape "
                   "should change</b>, and for smooth shapes: on the two-density sphere at noise "
-                  "0.25 edge it reached 0.023 edge (CGAL's smooth_shape at its best: 0.027).");
+                  "0.25 edge it reached 0.017 edge (CGAL's smooth_shape at its best: 0.027).");
         break;
     }
     return what + tr(

@@ -269,6 +269,15 @@ def case_json():
           "--volume-restoration scale lost the volume: %r" % b)
     check(ML.read_ply_vertices(work("offset.ply")) != ML.read_ply_vertices(work("scaled.ply")),
           "--volume-restoration scale gave the offset's result")
+    # --keep-drift: the curvature flow without its drift translation (Options::cancel_drift)
+    a = run_json([src, work("nodrift.ply"), "--operator", "curvature", "--time-step", 22.5])
+    b = run_json([src, work("drift.ply"), "--operator", "curvature", "--time-step", 22.5,
+                  "--keep-drift"])
+    for j in (a, b):
+        check(abs(j["volume_after"] - j["volume_before"]) <= 1e-6 * j["volume_before"],
+              "the curvature flow lost the volume: %r" % j)
+    check(ML.read_ply_vertices(work("nodrift.ply")) != ML.read_ply_vertices(work("drift.ply")),
+          "--keep-drift gave the default's result")
     # below 50,000 vertices the solver always runs on one thread: --threads changes nothing
     a = run_json([src, work("t1.ply"), "--threads", 1])
     b = run_json([src, work("t2.ply"), "--threads", 2])
@@ -465,7 +474,7 @@ def case_errors():
 
 
 OPTIONS = ["--operator", "--time-step", "--steps", "--order", "--explicit", "--normalized",
-           "--no-volume", "--volume-restoration", "--area", "--boundary", "--weights-from-quality", "--invert-weights",
+           "--no-volume", "--volume-restoration", "--keep-drift", "--area", "--boundary", "--weights-from-quality", "--invert-weights",
            "--freeze", "--tolerance", "--max-iterations", "--accept-unconverged", "--preconditioner",
            "--threads",
            "--json", "--ascii", "--quiet", "--help", "--version"]
