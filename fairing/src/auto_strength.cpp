@@ -756,8 +756,7 @@ public:
     // volume (see restored()). Three linear functionals of r per component, kept exactly beside
     // the sketch: a . n.r (the volume lost), s . n.r and 1 . n.r (a_i: vertex areas).
     //
-    //
-    // A component whose drift is cancelled (Options::cancel_drift, `anchored`) is then translated
+    // A component whose drift is cancelled (Options::cancel_drift, `drift_cancelled`) is translated
     // by the least-squares translation of its normal residual rho (after the restoration):
     // tau = P^-1 sum a_i n_i rho_i, P = sum a_i n_i n_i^T, and loses n_i . tau. With the
     // restoration's residual (1 - beta) s + beta n.r or n.r - t, that is
@@ -770,7 +769,7 @@ public:
         std::vector<int> component;  // per data vertex, -1: not restored
         std::vector<double> field, area;
         std::vector<char> offset;  // per component, as StrengthProblem::offset
-        std::vector<char> anchored;  // per component: its drift cancelled
+        std::vector<char> drift_cancelled;  // per component: its drift cancelled
         const Positions* normals = nullptr;
         int components = 0;
     };
@@ -821,8 +820,8 @@ public:
         const int components_known = static_cast<int>(layout_->restoration.component.size());
         const double* area = layout_->restoration.area.data();
         const double* field = layout_->restoration.field.data();
-        const char* anchored = layout_->restoration.anchored.data();
-        const bool any_anchored = layout_->anchored;
+        const char* drift_cancelled = layout_->restoration.drift_cancelled.data();
+        const bool any_drift_cancelled = layout_->drift_cancelled;
         const int* component_slot = layout_->slot.data();
         const signed char* b_sign = probe ? probe->data() : nullptr;
         const double* nv = normals.data();
@@ -857,7 +856,7 @@ public:
                 }
                 // A drift-cancelled sketched component's vertex (Restoration, "tau").
                 const int moment_slot =
-                    k >= 0 && any_anchored && anchored[k] ? component_slot[k] : -1;
+                    k >= 0 && any_drift_cancelled && drift_cancelled[k] ? component_slot[k] : -1;
                 if (v_twin) {
                     double ti[3];
                     for (int c = 0; c < 3; ++c) ti[c] = settle(*twin_u, free, v_twin, i, c);
@@ -981,13 +980,14 @@ private:
         std::array<double, 3> probe_sum{{0, 0, 0}};
         for (int c = 0; c < 3; ++c) {
             by_volume[c].assign(slot[c] >= 0 ? nc : 0, 0.0);
-            by_moment[c].assign(slot[c] >= 0 && layout_->anchored ? 3 * slots : 0, 0.0);
+            by_moment[c].assign(slot[c] >= 0 && layout_->drift_cancelled ? 3 * slots : 0, 0.0);
         }
         by_field = by_sum = by_volume;
         for (int chunk = 0; chunk < chunks; ++chunk) {
             const double* from_bucket = sums + chunk * stride;
             const double* from_component = from_bucket + buckets;
-            const double* from_moment = from_component + kComponentSums * static_cast<std::size_t>(nc);
+            const double* from_moment =
+                from_component + kComponentSums * static_cast<std::size_t>(nc);
             const double* from_probe = from_moment + kMomentSums;
             for (int c = 0; c < 3; ++c) {
                 if (slot[c] < 0) continue;
@@ -1054,7 +1054,8 @@ private:
         double extra = 0, weighted_beta = 0, covered = 0;
         const Eigen::Index fields = l.field_sketch.cols();
         Eigen::VectorXd along_field = Eigen::VectorXd::Zero(fields), along_one = along_field;
-        Eigen::VectorXd along_normal = Eigen::VectorXd::Zero(l.anchored ? 3 * fields : 0);
+        Eigen::VectorXd along_normal =
+            Eigen::VectorXd::Zero(l.drift_cancelled ? 3 * fields : 0);
         for (int k = 0; k < l.restoration.components; ++k) {
             if (!(l.volume[k] > 0)) continue;
             double by_volume = 0, by_field = 0, by_sum = 0;
@@ -1071,8 +1072,8 @@ private:
             covered += l.count[k];
             // The drift's translation (Restoration, "tau"): m = sum a n n.r first.
             Eigen::Vector3d m = Eigen::Vector3d::Zero();
-            const bool anchored = slot >= 0 && l.restoration.anchored[k];
-            if (anchored)
+            const bool drift_cancelled = slot >= 0 && l.restoration.drift_cancelled[k];
+            if (drift_cancelled)
                 for (Eigen::Index j = 0; j < used_; ++j)
                     for (int d = 0; d < 3; ++d) m(d) += moment_part_[j][3 * slot + d] * y(j);
             if (offset == 1 ||
@@ -1080,12 +1081,13 @@ private:
                 const double t = by_volume / l.area[k];
                 if (slot >= 0) along_one(slot) = -t;
                 else extra += t * t * l.count[k] - 2 * t * by_sum;
-                if (anchored)
-                    along_normal.segment<3>(3 * slot) = -l.normal_moment[k].solve(m - t * l.sum_normal[k]);
+                if (drift_cancelled)
+                    along_normal.segment<3>(3 * slot) =
+                        -l.normal_moment[k].solve(m - t * l.sum_normal[k]);
                 weighted_beta += l.count[k];
                 continue;
             }
-            if (anchored)
+            if (drift_cancelled)
                 along_normal.segment<3>(3 * slot) =
                     -l.normal_moment[k].solve(beta * m + (1 - beta) * l.field_normal[k]);
             if (slot >= 0) along_field(slot) = 1 - beta;
@@ -1097,7 +1099,7 @@ private:
         const double beta_all = covered == l.total ? weighted_beta / covered : 1.0;
         Eigen::VectorXd residual =
             beta_all * sketched + l.field_sketch * along_field + l.one_sketch * along_one;
-        if (l.anchored) residual += l.normal_sketch * along_normal;
+        if (l.drift_cancelled) residual += l.normal_sketch * along_normal;
         return extra + residual.squaredNorm();
     }
 
@@ -1106,11 +1108,12 @@ private:
     struct Layout {
         Restoration restoration;
         std::vector<double> volume, area, field2, count;  // per component: a . s, sum a, |s|^2, N
-        // Per drift-cancelled component: P = sum a n n^T (factored), q_s = sum a n s, q_1 = sum a n.
+        // Per drift-cancelled component: P = sum a n n^T (factored), q_s = sum a n s and
+        // q_1 = sum a n.
         std::vector<Eigen::LDLT<Eigen::Matrix3d>> normal_moment;
         std::vector<Eigen::Vector3d> field_normal, sum_normal;
-        bool anchored = false;  // some sketched component is (Restoration::anchored)
-        Eigen::MatrixXd normal_sketch;  // with anchored: n_d of each slot's vertices, 3 per slot
+        bool drift_cancelled = false;  // for some sketched component (Restoration)
+        Eigen::MatrixXd normal_sketch;  // then: n_d of each slot's vertices, 3 columns per slot
         // The kSketchedComponents largest components' slots (-1: not sketched) and the sketches
         // of their fields s and indicators 1, one column per slot.
         std::vector<int> slot;
@@ -1163,20 +1166,23 @@ private:
         l.field_sketch = Eigen::MatrixXd::Zero(l.rows, sketched);
         l.one_sketch = Eigen::MatrixXd::Zero(l.rows, sketched);
         for (int k = 0; k < nc; ++k)
-            l.anchored = l.anchored || (l.slot[k] >= 0 && !r.anchored.empty() && r.anchored[k]);
-        std::vector<Eigen::Matrix3d> moments(l.anchored ? nc : 0, Eigen::Matrix3d::Zero());
+            l.drift_cancelled =
+                l.drift_cancelled ||
+                (l.slot[k] >= 0 && !r.drift_cancelled.empty() && r.drift_cancelled[k]);
+        std::vector<Eigen::Matrix3d> moments(l.drift_cancelled ? nc : 0, Eigen::Matrix3d::Zero());
         l.field_normal.assign(nc, Eigen::Vector3d::Zero());
         l.sum_normal.assign(nc, Eigen::Vector3d::Zero());
-        if (l.anchored) l.normal_sketch = Eigen::MatrixXd::Zero(l.rows, 3 * sketched);
+        if (l.drift_cancelled) l.normal_sketch = Eigen::MatrixXd::Zero(l.rows, 3 * sketched);
         for (std::size_t i = 0; i < r.component.size(); ++i) {
             const int k = r.component[i];
             if (k < 0 || l.slot[k] < 0 || l.bucket[i] < 0) continue;
             l.field_sketch(l.bucket[i], l.slot[k]) += static_cast<double>(l.sign[i]) * r.field[i];
             l.one_sketch(l.bucket[i], l.slot[k]) += static_cast<double>(l.sign[i]);
-            if (!l.anchored || !r.anchored[k]) continue;
+            if (!l.drift_cancelled || !r.drift_cancelled[k]) continue;
             const Eigen::Vector3d n = r.normals->row(i).transpose();
             for (int d = 0; d < 3; ++d)
-                l.normal_sketch(l.bucket[i], 3 * l.slot[k] + d) += static_cast<double>(l.sign[i]) * n(d);
+                l.normal_sketch(l.bucket[i], 3 * l.slot[k] + d) +=
+                    static_cast<double>(l.sign[i]) * n(d);
             moments[k] += r.area[i] * n * n.transpose();
             l.field_normal[k] += r.area[i] * r.field[i] * n;
             l.sum_normal[k] += r.area[i] * n;
@@ -1188,7 +1194,7 @@ private:
 
     std::shared_ptr<const Layout> layout_;
     std::vector<std::vector<double>> volume_part_, field_part_, sum_part_;  // per column, component
-    // Per column, 3 per sketched component (its m_d; 0 unless anchored); empty when none is.
+    // Per column, 3 per sketched component (its m_d; 0 unless drift_cancelled); empty when none is.
     std::vector<std::vector<double>> moment_part_;
     std::vector<double> chunk_sums_;  // add()'s sums per chunk (scratch, kept between steps)
     // The sketched basis vectors, layout_->rows x kSketchBlock each: blocks rather than one
@@ -1460,9 +1466,9 @@ Sketch::Restoration restoration(const StrengthProblem& p, const Positions& norma
     }
     r.offset = p.offset;
     r.components = static_cast<int>(p.offset.size());
-    r.anchored.assign(p.offset.size(), 0);
+    r.drift_cancelled.assign(p.offset.size(), 0);
     for (std::size_t k = 0; k < p.offset.size(); ++k)
-        r.anchored[k] = p.cancel_drift && p.offset[k] != 1 && found[k];
+        r.drift_cancelled[k] = p.cancel_drift && p.offset[k] != 1 && found[k];
     r.normals = &normals;
     return r;
 }

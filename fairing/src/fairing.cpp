@@ -454,7 +454,8 @@ void Run::cancel_drift(const Eigen::RowVector3d& origin) {
         for (int f : components[c].faces) {
             const Triangle& t = faces[f];
             const Vec3 a = detail::row(x_, t[0]);
-            const Vec3 area_vector = 0.5 * (detail::row(x_, t[1]) - a).cross(detail::row(x_, t[2]) - a);
+            const Vec3 area_vector =
+                0.5 * (detail::row(x_, t[1]) - a).cross(detail::row(x_, t[2]) - a);
             const double area = area_vector.norm();
             if (!(area > 0)) continue;
             Vec3 d = Vec3::Zero();

@@ -474,7 +474,8 @@ def case_errors():
 
 
 OPTIONS = ["--operator", "--time-step", "--steps", "--order", "--explicit", "--normalized",
-           "--no-volume", "--volume-restoration", "--keep-drift", "--area", "--boundary", "--weights-from-quality", "--invert-weights",
+           "--no-volume", "--volume-restoration", "--keep-drift", "--area", "--boundary",
+           "--weights-from-quality", "--invert-weights",
            "--freeze", "--tolerance", "--max-iterations", "--accept-unconverged", "--preconditioner",
            "--threads",
            "--json", "--ascii", "--quiet", "--help", "--version"]

@@ -289,7 +289,8 @@ TEST(Volume, GrossLossIsScaledEvenWithTheNormalOffset) {
 
 // The translation t minimizing sum_f A_f (n_f . (d_f - t))^2, d_f the mean displacement of face
 // f's vertices from `from` to `to`, A_f n_f its area vector (on `to`).
-Vec3 normal_translation(const Positions& from, const Positions& to, const std::vector<Triangle>& f) {
+Vec3 normal_translation(const Positions& from, const Positions& to,
+                        const std::vector<Triangle>& f) {
     Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
     Vec3 b = Vec3::Zero();
     for (const Triangle& t : f) {
@@ -330,9 +331,11 @@ TEST(Volume, CancelDriftTakesTheTranslationOutOfTheCurvatureFlow) {
     for (auto how : {fairing::VolumeRestoration::NormalOffset, fairing::VolumeRestoration::Scale}) {
         for (int order : {1, 2}) {
             for (int steps : {1, 3}) {
-                SCOPED_TRACE(testing::Message() << "order " << order << " steps " << steps
-                                                << " scale " << (how == fairing::VolumeRestoration::Scale));
-                Options o = options(Operator::CurvatureFlow, order, steps, order == 1 ? 4.0 : 400.0);
+                const bool scale = how == fairing::VolumeRestoration::Scale;
+                SCOPED_TRACE(testing::Message()
+                             << "order " << order << " steps " << steps << " scale " << scale);
+                const double time_step = order == 1 ? 4.0 : 400.0;
+                Options o = options(Operator::CurvatureFlow, order, steps, time_step);
                 o.restoration = how;
                 o.cancel_drift = false;
                 const fairing::Result plain = fairing::fair(m, fixed, o);
@@ -342,11 +345,13 @@ TEST(Volume, CancelDriftTakesTheTranslationOutOfTheCurvatureFlow) {
                     const std::vector<Triangle>& f = part == 0 ? fa : fb;
                     const int first = part == 0 ? 0 : na, last = part == 0 ? na : nb;
                     const double size = part == 0 ? 2.0 : 0.7;
-                    EXPECT_LT(normal_translation(m.positions, kept.positions, f).norm(), 1e-11 * size);
+                    EXPECT_LT(normal_translation(m.positions, kept.positions, f).norm(),
+                              1e-11 * size);
                     EXPECT_NEAR(meshes::volume(kept.positions, f), meshes::volume(m.positions, f),
                                 1e-12 * meshes::volume(m.positions, f));
                     // One translation per component.
-                    const Vec3 shift = meshes::row(kept.positions, first) - meshes::row(plain.positions, first);
+                    const Vec3 shift =
+                        meshes::row(kept.positions, first) - meshes::row(plain.positions, first);
                     double worst = 0;
                     for (int i = first; i < last; ++i)
                         worst = std::max(worst, (meshes::row(kept.positions, i) -
@@ -356,7 +361,8 @@ TEST(Volume, CancelDriftTakesTheTranslationOutOfTheCurvatureFlow) {
                 // The noisy two-density sphere drifts without it (steps keep its area-weighted
                 // centroid, which the noise moves towards the denser half).
                 EXPECT_GT(normal_translation(m.positions, plain.positions, fa).norm(), 1e-5);
-                for (int i = nb; i < n; ++i) ASSERT_EQ(kept.positions.row(i), plain.positions.row(i));
+                for (int i = nb; i < n; ++i)
+                    ASSERT_EQ(kept.positions.row(i), plain.positions.row(i));
                 ASSERT_EQ(kept.positions.row(nb), m.positions.row(nb));
             }
         }

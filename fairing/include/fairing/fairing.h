@@ -149,9 +149,10 @@ struct Options {
     // drift the sphere towards it. Zero-mean noise has no such translation, and a thin part that
     // shrinks is none either (moving the solid's centroid back instead, as CGAL's smooth_shape
     // does, cost the camel up to 19 %). The study's spheres: the automatic curvature flow's error
-    // 22 % lower in the median (bench/results/issue11/auto-gap.md, section 21). Steps are
-    // translation-equivariant, so one translation after the last step is the same as one after
-    // each. The other operators keep the valence- or edge-weighted mean: no effect.
+    // 19 % lower in the median, 16 % on a second draw (bench/results/issue11/auto-gap.md,
+    // section 21). Steps are translation-equivariant, so one translation after the last step is
+    // the same as one after each. The other operators keep the valence- or edge-weighted mean of
+    // the vertices: no effect.
     bool cancel_drift = true;
     OpenInvariant open_invariant = OpenInvariant::None;
     // Solver (Appendix A): stop when ||A X - b|| < tolerance ||b|| for x, y and z. b is the
