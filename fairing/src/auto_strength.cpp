@@ -1468,7 +1468,7 @@ Sketch::Restoration restoration(const StrengthProblem& p, const Positions& norma
     r.components = static_cast<int>(p.offset.size());
     r.drift_cancelled.assign(p.offset.size(), 0);
     for (std::size_t k = 0; k < p.offset.size(); ++k)
-        r.drift_cancelled[k] = p.cancel_drift && p.offset[k] != 1 && found[k];
+        r.drift_cancelled[k] = k < p.cancel_drift.size() && p.cancel_drift[k] && found[k];
     r.normals = &normals;
     return r;
 }

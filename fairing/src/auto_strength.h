@@ -120,10 +120,10 @@ struct StrengthProblem {
     // (VolumeRestoration::NormalOffset; restore_measure). Empty: nothing restored.
     std::vector<int> restored;
     std::vector<char> offset;
-    // Restored components without fixed vertices are translated after the steps by the least-
-    // squares translation of their normal displacement (Options::cancel_drift): the risk's
-    // residual loses it.
-    bool cancel_drift = false;
+    // Per restored component, as offset: nonzero when fair() translates it after the steps by
+    // the least-squares translation of its normal displacement (Options::cancel_drift); the
+    // risk's residual loses that translation. Empty: none is.
+    std::vector<char> cancel_drift;
     std::function<void(double)> progress;  // fraction of the estimate done, in [0, 1]
     // The operator assembled at other positions (same rows, virtual vertices included), for the
     // operators whose weights depend on the positions (eq. 11, eq. 14); empty for the umbrella,

@@ -637,8 +637,8 @@ void Run::choose_time_step() {
         problem.offset.push_back(result_.components[c].has_fixed                             ? 1
                                  : options_.restoration == VolumeRestoration::NormalOffset ? 2
                                                                                            : 0);
+        problem.cancel_drift.push_back(cancels_drift(c) ? 1 : 0);
     }
-    problem.cancel_drift = options_.cancel_drift && options_.op == Operator::CurvatureFlow;
     if (options_.progress) problem.progress = [this](double f) { report_progress(kShare * f); };
     if (options_.op == Operator::Umbrella) release_pairing();  // never assembled again
     if (options_.op != Operator::Umbrella)  // weights of the positions: Monte-Carlo divergence

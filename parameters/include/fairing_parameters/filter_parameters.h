@@ -82,7 +82,7 @@ struct Values {
     // engine's default (the normal offset); the command-line tool and the engine offer both.
     // cancelDrift likewise (Options::cancel_drift).
     fairing::VolumeRestoration volumeRestoration = fairing::VolumeRestoration::NormalOffset;
-    bool cancelDrift = true;
+    bool cancelDrift = fairing::Options().cancel_drift;
     int openInvariant = 0;
     int boundaryMode = 0;
     bool qualityWeights = false;
