@@ -18,25 +18,8 @@ import tempfile
 
 import numpy as np
 
-FACE = np.dtype([('n', 'u1'), ('i', '<i4', 3)])
-
-
-def read_ply(path):
-    """Binary little-endian PLY with double or float x y z and triangles, as the tools write."""
-    with open(path, 'rb') as f:
-        header = []
-        while not header or header[-1] != 'end_header':
-            header.append(f.readline().decode().strip())
-        counts, kind = {}, None
-        for line in header:
-            t = line.split()
-            if t[0] == 'element':
-                counts[t[1]] = int(t[2])
-            if t[0] == 'property' and kind is None and t[1] in ('double', 'float'):
-                kind = '<f8' if t[1] == 'double' else '<f4'
-        v = np.frombuffer(f.read(counts['vertex'] * 3 * np.dtype(kind).itemsize), dtype=kind)
-        faces = np.frombuffer(f.read(counts['face'] * FACE.itemsize), dtype=FACE)
-        return v.reshape(-1, 3).astype(float), faces['i'].astype(np.int64)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "../../../../scripts"))
+from recipes_mesh import read_ply, vertex_normals  # noqa: E402  the project's PLY reader, normals
 
 
 def mean_curvature(v, f):
@@ -50,12 +33,9 @@ def mean_curvature(v, f):
         np.add.at(kx, i, half[:, None] * (v[j] - v[i]))
         np.add.at(kx, j, half[:, None] * (v[i] - v[j]))
     face_area = 0.5 * np.linalg.norm(np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]]), axis=1)
-    normal = np.zeros_like(v)
     for a in range(3):
         np.add.at(area, f[:, a], face_area / 3)
-        np.add.at(normal, f[:, a], np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]]))
-    normal /= np.maximum(np.linalg.norm(normal, axis=1), 1e-300)[:, None]
-    return -np.einsum('ij,ij->i', normal, kx) / np.maximum(area, 1e-300)
+    return -np.einsum('ij,ij->i', vertex_normals(v, f), kx) / np.maximum(area, 1e-300)
 
 
 def smoothed(w, f, passes):
