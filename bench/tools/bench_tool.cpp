@@ -9,7 +9,8 @@
 //   info IN                                  JSON: vertices, faces, mean_edge, volume
 //   metrics CLEAN INPUT RESULT               JSON: error of RESULT (and INPUT) to CLEAN's
 //                                            surface, volume change vs INPUT, tangential drift
-//   fair IN OUT.ply OP ORDER TIME_STEP|auto [STEPS [threads=N] [preconditioner=P] [freeze=1]]
+//   fair IN OUT.ply OP ORDER TIME_STEP|auto [STEPS [threads=N] [preconditioner=P] [freeze=1]
+//                                            [volume=0|1] [shaped=0|1]]
 //                                            runs fairing::fair() directly: JSON with seconds,
 //                                            iterations and the engine's extra peak memory
 #include "bench_mesh.h"
@@ -127,7 +128,8 @@ int main(int argc, char** argv) {
             else o.time_step = std::atof(argv[6]);
             o.steps = argc > 7 ? std::atoi(argv[7]) : 1;
             // Optional after STEPS: threads=N, preconditioner=auto|jacobi|factored, freeze=0|1,
-            // volume=0|1 (Options::preserve_volume, default 1).
+            // volume=0|1 (Options::preserve_volume, default 1), shaped=0|1 (Options::shaped_offset,
+            // default 1).
             for (int k = 8; k < argc; ++k) {
                 const std::string kv = argv[k];
                 const std::size_t eq = kv.find('=');
@@ -135,6 +137,7 @@ int main(int argc, char** argv) {
                 if (key == "threads") o.threads = std::atoi(value.c_str());
                 else if (key == "freeze") o.freeze_operator = value == "1";
                 else if (key == "volume") o.preserve_volume = value == "1";
+                else if (key == "shaped") o.shaped_offset = value == "1";
                 else if (key == "preconditioner")
                     o.preconditioner = value == "jacobi" ? fairing::Preconditioner::Jacobi
                                      : value == "factored" ? fairing::Preconditioner::Factored

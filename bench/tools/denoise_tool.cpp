@@ -13,7 +13,7 @@
 //   eval CLEAN TRUTH INPUT RESULT...   one JSON line per RESULT: rms, max (in CLEAN's mean
 //                                      edges), volume_change (percent, vs INPUT)
 //   sweep INPUT CLEAN TRUTH OP ORDER STEPS X0 [--ts T1,T2,...] [--auto|--at-chosen]
-//         [--no-volume|--scale] [--freeze] [--keep-drift]
+//         [--no-volume|--scale] [--freeze] [--keep-drift] [--uniform-offset]
 //                                      runs fairing::fair() in-process on INPUT (rounded to
 //                                      float, as the CLI and MeshLab read it) and prints one JSON
 //                                      line per time step (rms: to the surface; rms_normal:
@@ -28,7 +28,8 @@
 //                                      restored; --scale: restored by the paper's scaling
 //                                      instead of the default normal offset; --freeze: the
 //                                      first step's operator for every step (section 4.3);
-//                                      --keep-drift: Options::cancel_drift off
+//                                      --keep-drift: Options::cancel_drift off;
+//                                      --uniform-offset: Options::shaped_offset off
 // TRUTH: sphere | plane | torus:R:r | mesh (the CLEAN mesh's surface).
 #include "bench_mesh.h"
 #include "denoise_shapes.h"
@@ -70,6 +71,13 @@ template <class O> auto set_cancel_drift(O& o, bool value) -> decltype(o.cancel_
     return true;
 }
 template <class O> bool set_cancel_drift(O&, int) { return false; }
+// Options::shaped_offset = value, likewise.
+template <class O>
+auto set_shaped_offset(O& o, bool value) -> decltype(o.shaped_offset = value, bool()) {
+    o.shaped_offset = value;
+    return true;
+}
+template <class O> bool set_shaped_offset(O&, int) { return false; }
 
 std::string num(double x) {
     if (!std::isfinite(x)) return "null";
@@ -177,7 +185,10 @@ int sweep(int argc, char** argv) {
         else if (a == "--no-volume") o.preserve_volume = false;
         else if (a == "--scale") o.restoration = fairing::VolumeRestoration::Scale;
         else if (a == "--freeze") o.freeze_operator = true;
-        else if (a == "--keep-drift") {
+        else if (a == "--uniform-offset") {
+            if (!set_shaped_offset(o, false))
+                throw std::runtime_error("sweep: this engine has no Options::shaped_offset");
+        } else if (a == "--keep-drift") {
             if (!set_cancel_drift(o, false))
                 throw std::runtime_error("sweep: this engine has no Options::cancel_drift");
         }

@@ -124,6 +124,11 @@ struct StrengthProblem {
     // the least-squares translation of its normal displacement (Options::cancel_drift); the
     // risk's residual loses that translation. Empty: none is.
     std::vector<char> cancel_drift;
+    // Per data vertex the shape w of the normal offset (Options::shaped_offset, offset_shape.h):
+    // a restored component is offset by t w_i n_i, and the residual loses that. Null: w = 1.
+    const std::vector<double>* offset_shape = nullptr;
+    // The noise level when the caller has estimated it already (noise_level()); 0: estimated.
+    double noise_level = 0;
     std::function<void(double)> progress;  // fraction of the estimate done, in [0, 1]
     // The operator assembled at other positions (same rows, virtual vertices included), for the
     // operators whose weights depend on the positions (eq. 11, eq. 14); empty for the umbrella,
@@ -162,6 +167,12 @@ Positions robust_normals(const HalfEdgeMesh& mesh, const Positions& x);
 // the one-rings (its weights are not used; columns at or past mesh.num_vertices() are ignored).
 double estimate_noise(const SparseOperator& op, const HalfEdgeMesh& mesh, const Positions& x,
                       const Positions& normals, const std::vector<char>& use);
+
+// The normals the estimate measures along (those of a lightly smoothed copy: the noisy mesh's
+// are tilted by the noise, by ~25 degrees at half an edge, which hides part of it from the
+// normal components), and the noise level along them (estimate_noise on the free data rows).
+Positions strength_normals(const StrengthProblem& problem);
+double noise_level(const StrengthProblem& problem, const Positions& normals);
 
 StrengthEstimate estimate_strength(const StrengthProblem& problem);
 

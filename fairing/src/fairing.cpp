@@ -11,6 +11,7 @@
 #include "frozen_steps.h"
 #include "geometry.h"
 #include "kernels.h"
+#include "offset_shape.h"
 #include "vertex_order.h"
 
 #include <algorithm>
@@ -189,6 +190,9 @@ private:
                        double lambda_dt, const char* system);
     void record(const SolveStats& stats, int step, const char* system);
     void restore();
+    Restoration restore_component(std::size_t c, Positions& x,
+                                  const std::vector<double>* shape) const;
+    void shape_offset();
     bool cancels_drift(std::size_t component) const;
     void cancel_drift(const Eigen::RowVector3d& origin);  // Options::cancel_drift
     void warn(const std::string& w) { result_.warnings.push_back(w); }
@@ -222,6 +226,8 @@ private:
     std::vector<char> free_surface_, free_curve_;  // unknowns of the two systems
     std::vector<char> ever_free_;   // moved by some step
     std::vector<double> target_;    // per component: volume (closed) or area (open), or 0
+    std::vector<double> offset_shape_;  // Options::shaped_offset, per data vertex; empty: uniform
+    double noise_level_ = 0;        // estimated for the shape (0: not yet)
     Positions x_;                   // centred working positions (plus virtual vertices)
     SolveStats previous_surface_solve_;  // the last step's (solver.h, SolveSettings::previous)
     SparseOperator surface_, curve_;
@@ -422,16 +428,65 @@ bool Run::take_frozen_steps(double lambda_dt, int steps) {
 }
 
 void Run::restore() {
+    const std::vector<double>* shape = offset_shape_.empty() ? nullptr : &offset_shape_;
+    for (std::size_t c = 0; c < target_.size(); ++c)
+        if (target_[c] != 0) result_.components[c].restoration = restore_component(c, x_, shape);
+}
+
+// x may hold virtual vertices after the first n_ rows; they are not part of any component and
+// restore_measure only touches the component's own rows.
+Restoration Run::restore_component(std::size_t c, Positions& x,
+                                   const std::vector<double>* shape) const {
+    return restore_measure(he_, he_.components()[c], restorable_, target_[c], x,
+                           options_.restoration, options_.threads, shape);
+}
+
+// Options::shaped_offset (src/offset_shape.h): the shape of the curvature flow's volume offset,
+// from the input, before the estimate (which models it) and the steps.
+void Run::shape_offset() {
+    if (!options_.shaped_offset || options_.op != Operator::CurvatureFlow ||
+        !options_.preserve_volume || options_.restoration != VolumeRestoration::NormalOffset)
+        return;
+    detail::OffsetShapeProblem problem;
     const auto& components = he_.components();
+    problem.component_of.assign(n_, -1);
     for (std::size_t c = 0; c < components.size(); ++c) {
-        if (target_[c] == 0) continue;
-        // x_ may hold virtual vertices after the first n_ rows; they are not part of any
-        // component and restore_measure only touches the component's own rows.
-        const Restoration how =
-            restore_measure(he_, components[c], restorable_, target_[c], x_, options_.restoration,
-                            options_.threads);
-        result_.components[c].restoration = how;
+        if (target_[c] == 0 || !result_.components[c].closed) continue;
+        for (int v : components[c].vertices) problem.component_of[v] = problem.components;
+        ++problem.components;
     }
+    if (problem.components == 0) return;
+    const std::vector<char> free = surface_free();
+    detail::StrengthProblem measured;  // what the automatic strength measures the noise on
+    measured.op = &surface_;
+    measured.free = &free;
+    measured.x = &x_;
+    measured.mesh = &he_;
+    measured.data_vertices = n_;
+    noise_level_ = detail::noise_level(measured, detail::strength_normals(measured));
+    problem.mesh = &he_;
+    problem.op = &surface_;
+    problem.x = &x_;
+    problem.free = &free;
+    problem.weight = weight_.empty() ? nullptr : &weight_;
+    problem.data_vertices = n_;
+    problem.mean_edge = mean_edge_;
+    problem.noise_level = noise_level_;
+    problem.max_iterations = options_.max_iterations;
+    problem.assemble_at = [this](const Positions& at) {
+        return assemble(options_.op, work_mesh(he_, work_, virtual_mode_), at, options_.normalized,
+                        nullptr, options_.threads);
+    };
+    problem.restore = [this](Positions& x) {
+        try {
+            for (std::size_t c = 0; c < target_.size(); ++c)
+                if (target_[c] != 0) restore_component(c, x, nullptr);
+        } catch (const Error&) {  // the run itself says so if its own restoration fails
+            return false;
+        }
+        return true;
+    };
+    offset_shape_ = detail::curvature_offset_shape(problem).weight;
 }
 
 bool Run::cancels_drift(std::size_t c) const {
@@ -639,6 +694,8 @@ void Run::choose_time_step() {
                                                                                            : 0);
         problem.cancel_drift.push_back(cancels_drift(c) ? 1 : 0);
     }
+    problem.offset_shape = offset_shape_.empty() ? nullptr : &offset_shape_;
+    problem.noise_level = noise_level_;
     if (options_.progress) problem.progress = [this](double f) { report_progress(kShare * f); };
     if (options_.op == Operator::Umbrella) release_pairing();  // never assembled again
     if (options_.op != Operator::Umbrella)  // weights of the positions: Monte-Carlo divergence
@@ -812,6 +869,7 @@ Result Run::run() {
     const bool may_step = options_.steps > 0 && !(options_.time_step.has_value() &&
                                                   *options_.time_step == 0);
     if (may_step) assemble_surface();
+    if (may_step) shape_offset();
     if (may_step) choose_time_step();
     if (result_.automatic_time_step) release_free_memory();  // the estimate's vectors
     else time_step_ = options_.time_step.value_or(0);

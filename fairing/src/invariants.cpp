@@ -122,16 +122,16 @@ std::array<double, 4> offset_volume_cubic(const HalfEdgeMesh& mesh, const Compon
     return c;
 }
 
-// Offsets the free vertices along their area-weighted unit normals by a common distance t with
-// measure(t) = target. The volume is a cubic in t, whose coefficients one pass gives and whose
-// root Newton's method finds on four numbers, where the secant method took a pass over the
-// faces per iterate (one first-order curvature step at time step 4.74 on the 1.2 M-face bunny,
-// one thread: 1.41-1.48 s before, 1.21-1.22 s after); the area is a smooth function of t,
-// solved by the secant method. Either way t is found to rounding, checked on the direct sum.
-// False (x untouched) if it is not.
+// Offsets the free vertices along their area-weighted unit normals (times shape_i, if given) by
+// a common distance t with measure(t) = target. The volume is a cubic in t, whose coefficients
+// one pass gives and whose root Newton's method finds on four numbers, where the secant method
+// took a pass over the faces per iterate (one first-order curvature step at time step 4.74 on
+// the 1.2 M-face bunny, one thread: 1.41-1.48 s before, 1.21-1.22 s after); the area is a smooth
+// function of t, solved by the secant method. Either way t is found to rounding, checked on the
+// direct sum. False (x untouched) if it is not.
 bool offset_component(const HalfEdgeMesh& mesh, const Component& component, bool volume,
                       const std::vector<char>& free, double sign, double target, double now,
-                      Positions& x, int threads) {
+                      Positions& x, int threads, const std::vector<double>* shape) {
     // Per vertex of the component only (its index in component.vertices), so that a mesh of
     // many small components costs their sizes, not the mesh's size per component.
     // (A reference, so that the parallel passes below see the calling thread's vector.)
@@ -149,6 +149,7 @@ bool offset_component(const HalfEdgeMesh& mesh, const Component& component, bool
     for (std::size_t k = 0; k < component.vertices.size(); ++k) {
         const double length = normal[k].norm();
         normal[k] = free[component.vertices[k]] && length > 0 ? Vec3(normal[k] / length) : Vec3::Zero();
+        if (shape) normal[k] *= (*shape)[component.vertices[k]];
     }
     const Vec3 o = detail::row(x, component.vertices.front());
     const auto moved = [&](double t) {
@@ -219,7 +220,8 @@ bool offset_component(const HalfEdgeMesh& mesh, const Component& component, bool
 
 Restoration restore_measure(const HalfEdgeMesh& mesh, const Component& component,
                             const std::vector<char>& free, double target, Positions& x,
-                            VolumeRestoration how, int threads) {
+                            VolumeRestoration how, int threads,
+                            const std::vector<double>* shape) {
     const bool volume = component.closed();
     const char* what = volume ? "volume" : "area";
     int free_count = 0;
@@ -243,7 +245,8 @@ Restoration restore_measure(const HalfEdgeMesh& mesh, const Component& component
     const bool whole = free_count == static_cast<int>(component.vertices.size());
     const bool offset = !whole || (how == VolumeRestoration::NormalOffset &&
                                    std::abs(target / now - 1) <= kMaxOffsetChange);
-    if (offset && offset_component(mesh, component, volume, free, sign, target, now, x, threads))
+    if (offset && offset_component(mesh, component, volume, free, sign, target, now, x, threads,
+                                   shape))
         return Restoration::NormalOffset;
     if (!whole)
         throw Error(std::string("could not restore the ") + what +

@@ -47,6 +47,32 @@ def gen(kind, name, quality=None):
     return work(name)
 
 
+def noisy_torus(nu=48, nv=16, major=1.0, minor=0.4, seed=5):
+    """A torus grid with Gaussian noise of a quarter of its mean edge along the tube's normals."""
+    import random
+    rng = random.Random(seed)
+    V, F = [], []
+    for j in range(nv):
+        for i in range(nu):
+            a, b = 2 * math.pi * i / nu, 2 * math.pi * j / nv
+            n = (math.cos(b) * math.cos(a), math.cos(b) * math.sin(a), math.sin(b))
+            V.append([major * math.cos(a) + minor * n[0], major * math.sin(a) + minor * n[1],
+                      minor * n[2]])
+    for j in range(nv):
+        for i in range(nu):
+            p00, p10 = j * nu + i, j * nu + (i + 1) % nu
+            p01, p11 = ((j + 1) % nv) * nu + i, ((j + 1) % nv) * nu + (i + 1) % nu
+            F += [(p00, p10, p11), (p00, p11, p01)]
+    e = ML.mean_edge(V, F)
+    for j in range(nv):
+        for i in range(nu):
+            a, b = 2 * math.pi * i / nu, 2 * math.pi * j / nv
+            n = (math.cos(b) * math.cos(a), math.cos(b) * math.sin(a), math.sin(b))
+            d = rng.gauss(0, 0.25 * e)
+            V[j * nu + i] = [V[j * nu + i][k] + d * n[k] for k in range(3)]
+    return V, F
+
+
 def run(args, expect=0, tool=None):
     """Runs the tool; returns (stdout, stderr). expect: exit status, or 'nonzero'."""
     cmd = [tool or ARGS.tool] + [str(a) for a in args]
@@ -278,6 +304,17 @@ def case_json():
               "the curvature flow lost the volume: %r" % j)
     check(ML.read_ply_vertices(work("nodrift.ply")) != ML.read_ply_vertices(work("drift.ply")),
           "--keep-drift gave the default's result")
+    # --uniform-offset: the curvature flow's volume offset not shaped (Options::shaped_offset)
+    torus = work("torus.ply")
+    ML.write_ply(torus, *noisy_torus())
+    a = run_json([torus, work("shaped.ply"), "--operator", "curvature", "--time-step", 60])
+    b = run_json([torus, work("uniform.ply"), "--operator", "curvature", "--time-step", 60,
+                  "--uniform-offset"])
+    for j in (a, b):
+        check(abs(j["volume_after"] - j["volume_before"]) <= 1e-6 * j["volume_before"],
+              "the curvature flow lost the torus's volume: %r" % j)
+    check(ML.read_ply_vertices(work("shaped.ply")) != ML.read_ply_vertices(work("uniform.ply")),
+          "--uniform-offset gave the default's result")
     # below 50,000 vertices the solver always runs on one thread: --threads changes nothing
     a = run_json([src, work("t1.ply"), "--threads", 1])
     b = run_json([src, work("t2.ply"), "--threads", 2])
@@ -474,7 +511,8 @@ def case_errors():
 
 
 OPTIONS = ["--operator", "--time-step", "--steps", "--order", "--explicit", "--normalized",
-           "--no-volume", "--volume-restoration", "--keep-drift", "--area", "--boundary",
+           "--no-volume", "--volume-restoration", "--keep-drift", "--uniform-offset", "--area",
+           "--boundary",
            "--weights-from-quality", "--invert-weights",
            "--freeze", "--tolerance", "--max-iterations", "--accept-unconverged", "--preconditioner",
            "--threads",

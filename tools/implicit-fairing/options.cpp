@@ -147,6 +147,12 @@ void addFilterParameters(CLI::App& app, CommandLine& cl, const Values& d)
                  "Curvature flow: do not translate closed components back by the least-squares "
                  "translation of their displacement along the normals (the paper's flow as is: "
                  "strong steps on unevenly sampled noisy meshes drift). Default: translated back");
+    app.add_flag("--uniform-offset", cl.uniformOffset,
+                 "Curvature flow, --volume-restoration offset: every free vertex moves the same "
+                 "distance along its normal, instead of a distance shaped like the input's "
+                 "smoothed mean curvature (the volume goes back where the flow took it; uniform "
+                 "anyway where noise explains most of that curvature's variation, as on a "
+                 "sphere). Default: shaped");
     app.add_flag("--area", cl.area,
                  "[openInvariant=Area] Restore the surface area of open components (which "
                  "enclose no volume) after each step. Default: open components are not restored");
@@ -261,6 +267,7 @@ Values filterValues(const CommandLine& cl)
     v.volumeRestoration = cl.volumeRestoration == "scale" ? fairing::VolumeRestoration::Scale
                                                           : fairing::VolumeRestoration::NormalOffset;
     v.cancelDrift = !cl.keepDrift;
+    v.shapedOffset = !cl.uniformOffset;
     v.openInvariant = cl.area ? 1 : 0;
     v.boundaryMode = cl.boundary == "curve" ? 1 : cl.boundary == "virtual" ? 2 : 0;
     v.qualityWeights = cl.qualityWeights;

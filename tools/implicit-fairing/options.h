@@ -25,6 +25,7 @@ struct CommandLine {
     std::string boundary = "fixed";          // fixed | curve | virtual
     std::string volumeRestoration = "offset";  // offset | scale
     bool keepDrift = false;
+    bool uniformOffset = false;
     bool qualityWeights = false, invertWeights = false;
     bool freeze = false;
     double tolerance = 0;

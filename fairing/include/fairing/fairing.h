@@ -154,6 +154,16 @@ struct Options {
     // the same as one after each. The other operators keep the valence- or edge-weighted mean of
     // the vertices: no effect.
     bool cancel_drift = true;
+    // Curvature flow with preserve_volume and VolumeRestoration::NormalOffset: a closed
+    // component's volume goes back by the offset t w_i n_i instead of t n_i, w the smoothed mean
+    // curvature of the input after one first-order curvature step, pulled towards uniform by the
+    // share of its variation that a second draw of noise shows to be noise (src/offset_shape.h).
+    // The flow takes the volume from the convex, strongly curved parts (a torus's outer rim, a
+    // thin limb), and a uniform offset puts it back everywhere. Where noise or sampling explains
+    // most of the curvature's variation (a sphere) the offset stays uniform, bit for bit. The
+    // automatic strength models the same offset. Costs two first-order steps and four assemblies
+    // of the operator before the estimate.
+    bool shaped_offset = true;
     OpenInvariant open_invariant = OpenInvariant::None;
     // Solver (Appendix A): stop when ||A X - b|| < tolerance ||b|| for x, y and z. b is the
     // mass-weighted position of the centred mesh, so 1e-8 leaves an error far below an edge.

@@ -36,10 +36,11 @@ constexpr double kMaxOffsetChange = 0.1;
 // t is found and nothing is fixed): scales about the centroid (the solid's for volume, the
 // surface's for area) by (target/now)^(1/3) or ^(1/2). Returns the method used. Throws Error if
 // a component with fixed vertices cannot be restored. `threads` as for component_volume (the
-// result does not depend on it).
+// result does not depend on it). `shape` (per vertex, optional): the offset is t shape_i n_i
+// (Options::shaped_offset); the measure is restored as exactly.
 Restoration restore_measure(const HalfEdgeMesh& mesh, const Component& component,
                             const std::vector<char>& free, double target, Positions& positions,
                             VolumeRestoration how = VolumeRestoration::NormalOffset,
-                            int threads = 1);
+                            int threads = 1, const std::vector<double>* shape = nullptr);
 
 }  // namespace fairing

@@ -80,9 +80,10 @@ struct Values {
     // Not a filter parameter: MeshLab 2020.09's meshlabserver asserts that a script lists every
     // parameter of the filter, so a new one would break every saved script. The filters use the
     // engine's default (the normal offset); the command-line tool and the engine offer both.
-    // cancelDrift likewise (Options::cancel_drift).
+    // cancelDrift and shapedOffset likewise (Options::cancel_drift, Options::shaped_offset).
     fairing::VolumeRestoration volumeRestoration = fairing::VolumeRestoration::NormalOffset;
     bool cancelDrift = fairing::Options().cancel_drift;
+    bool shapedOffset = fairing::Options().shaped_offset;
     int openInvariant = 0;
     int boundaryMode = 0;
     bool qualityWeights = false;
@@ -128,6 +129,7 @@ inline fairing::Options toOptions(fairing::Operator op, const Values& v) {
     o.preserve_volume = v.preserveVolume;
     o.restoration = v.volumeRestoration;
     o.cancel_drift = v.cancelDrift;
+    o.shaped_offset = v.shapedOffset;
     o.open_invariant = index(v.openInvariant, openInvariantLabels(), kOpenInvariant) == 1
                            ? fairing::OpenInvariant::Area
                            : fairing::OpenInvariant::None;

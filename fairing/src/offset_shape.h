@@ -1,0 +1,82 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
+// Where the curvature flow's volume restoration puts the volume back (Options::shaped_offset;
+// not installed).
+//
+// The flow of eq. 14 moves each vertex by its mean curvature, so a step takes the volume from
+// the convex, strongly curved parts (the outer rim of a torus, a thin limb) and a uniform normal
+// offset puts it back everywhere: on the torus with a quarter edge of noise the restored result
+// errs 12 % more than one restored where the volume went (bench/results/issue11/auto-gap.md,
+// section 23). The offset that fair() and the automatic strength's model then use is t w_i n_i
+// with w_i from the input alone:
+//   1. a pilot: the input after one implicit first-order curvature step at time step
+//      kPilotTimeStep (lambda_dt in mean edges squared), its volume restored by the uniform
+//      offset, as fair() would;
+//   2. its mean curvature, H_i = -n_i . (L x)_i (eq. 14's L at the pilot, cotangents clamped as
+//      the operator clamps them; area-weighted vertex normals), smoothed over the mesh's edges
+//      by kSmoothingPasses half steps to the one-ring mean;
+//   3. shrunk towards its component's mean by the share of its variance that the noise does not
+//      explain (James and Stein's shrinkage, with the noise's part measured, not modelled): the
+//      same recipe on the input plus a second draw of Gaussian noise along the normals at the
+//      estimated level gives a second field, and var(second - first) / var(first) is the noise's
+//      share. A share below kLeastShare counts as none (on a coarse irregular sphere the discrete
+//      curvature's own variation with the sampling reads as signal: 0.24 on a 3 k-face sphere at
+//      a tenth of an edge of noise, whose offset should be uniform);
+//   4. clamped at 0 (no vertex is pushed inwards to restore volume) and scaled to mean 1 over the
+//      component's data vertices.
+// A component whose share counts as none keeps the uniform offset (w = 1 exactly), so a sphere
+// restores as before, bit for bit.
+//
+// Conventions: rows past `data_vertices` (virtual vertices) are not data and get no weight; only
+// vertices of restored closed components (component_of >= 0) get one; the others' entries are 1.
+#pragma once
+
+#include "fairing/fairing.h"
+#include "fairing/half_edge.h"
+#include "fairing/operators.h"
+
+#include <functional>
+#include <vector>
+
+namespace fairing {
+namespace detail {
+
+// The pilot's time step and smoothing, and the least share of variance counted as signal:
+// chosen in session 23 and 24 on the denoising study's meshes (auto-gap.md, sections 23-24).
+constexpr double kPilotTimeStep = 8;
+constexpr int kShapeSmoothingPasses = 64;
+constexpr double kLeastShare = 0.6;
+
+struct OffsetShapeProblem {
+    const HalfEdgeMesh* mesh = nullptr;       // the data vertices' mesh
+    const SparseOperator* op = nullptr;       // the curvature operator at x (all rows of x)
+    const Positions* x = nullptr;             // positions, virtual vertices after the data
+    const std::vector<char>* free = nullptr;  // the surface system's unknowns (mass > 0)
+    const std::vector<double>* weight = nullptr;  // soft weights of the data vertices; null: 1
+    int data_vertices = 0;
+    double mean_edge = 0;        // of x's data vertices
+    double noise_level = 0;      // sigma along the normals, in the mesh's units
+    // Per data vertex the restored closed component's index, -1 for none; `components` of them.
+    std::vector<int> component_of;
+    int components = 0;
+    // The curvature operator at other positions (same rows), and fair()'s uniform restoration of
+    // the restored components' volume (false: it failed; the offset then stays uniform).
+    std::function<SparseOperator(const Positions&)> assemble_at;
+    std::function<bool(Positions&)> restore;
+    double tolerance = 1e-6;
+    int max_iterations = 2000;
+};
+
+// What the shape found: w per data vertex (empty when every component keeps the uniform
+// offset), and per component the noise's share (1 - the share kept; for tests and studies).
+struct OffsetShape {
+    std::vector<double> weight;
+    std::vector<double> kept_share;
+};
+
+// Throws Error when a pilot's solve produces non-finite values; a pilot that does not converge
+// or an operator that loses a free row's mass leaves the offset uniform.
+OffsetShape curvature_offset_shape(const OffsetShapeProblem& p);
+
+}  // namespace detail
+}  // namespace fairing
