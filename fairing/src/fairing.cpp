@@ -473,6 +473,9 @@ void Run::shape_offset() {
     problem.mean_edge = mean_edge_;
     problem.noise_level = noise_level_;
     problem.max_iterations = options_.max_iterations;
+    // Two first-order solves: a tenth of the progress range, before the estimate's share.
+    constexpr double kShare = 0.1;
+    if (options_.progress) problem.progress = [this](double f) { report_progress(kShare * f); };
     problem.assemble_at = [this](const Positions& at) {
         return assemble(options_.op, work_mesh(he_, work_, virtual_mode_), at, options_.normalized,
                         nullptr, options_.threads);

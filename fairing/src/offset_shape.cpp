@@ -60,8 +60,9 @@ bool keeps_masses(const OffsetShapeProblem& p, const SparseOperator& op) {
 // when null, on the operator assembled at x, released before the pilot's own (at most two
 // operators beside fair()'s are alive). Empty when the step cannot be taken (not converged, the
 // restoration failed, or an operator loses a free row's mass).
+// `part` (0 or 1): which half of the shape's progress the pilot's solve reports.
 std::vector<double> curvature_field(const OffsetShapeProblem& p, const SparseOperator* given,
-                                    Positions x) {
+                                    Positions x, int part) {
     const int n = p.data_vertices;
     {
         SparseOperator assembled;
@@ -82,6 +83,10 @@ std::vector<double> curvature_field(const OffsetShapeProblem& p, const SparseOpe
         SolveSettings settings;
         settings.tolerance = p.tolerance;
         settings.max_iterations = p.max_iterations;
+        if (p.progress)
+            settings.progress = [&p, part](double f) {
+                p.progress(0.5 * (part + std::min(f, 1.0)));
+            };
         if (!solve(system, x, settings).converged || !p.restore(x)) return {};
     }
     const SparseOperator at = p.assemble_at(x);
@@ -118,13 +123,13 @@ OffsetShape curvature_offset_shape(const OffsetShapeProblem& p) {
     OffsetShape shape;
     shape.kept_share.assign(p.components, 0.0);
     if (p.components == 0 || !(p.noise_level > 0)) return shape;
-    const std::vector<double> first = curvature_field(p, p.op, *p.x);
+    const std::vector<double> first = curvature_field(p, p.op, *p.x, 0);
     if (first.empty()) return shape;
     Positions redrawn = *p.x;
     const Positions normals = area_normals(*p.mesh, *p.x, n);
     for (int i = 0; i < n; ++i)
         if ((*p.free)[i]) redrawn.row(i) += p.noise_level * gaussian(i) * normals.row(i);
-    const std::vector<double> second = curvature_field(p, nullptr, std::move(redrawn));
+    const std::vector<double> second = curvature_field(p, nullptr, std::move(redrawn), 1);
     if (second.empty()) return shape;
 
     // Per component: the field's mean and variance, and the variance the noise accounts for.

@@ -65,6 +65,7 @@ struct OffsetShapeProblem {
     std::function<bool(Positions&)> restore;
     double tolerance = 1e-6;
     int max_iterations = 2000;
+    std::function<void(double)> progress;  // fraction of the shape's work done, in [0, 1]
 };
 
 // What the shape found: w per data vertex (empty when every component keeps the uniform

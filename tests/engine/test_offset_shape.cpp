@@ -189,3 +189,17 @@ TEST(OffsetShape, OnlyTheCurvatureFlowsNormalOffset) {
     shaped.restoration = uniform.restoration = fairing::VolumeRestoration::Scale;
     EXPECT_TRUE(fairing::fair(m, {}, shaped).positions == fairing::fair(m, {}, uniform).positions);
 }
+
+// The shape's two pilot solves report progress (the first tenth of the range), and the whole
+// run's progress stays monotone and ends at 1.
+TEST(OffsetShape, ProgressIsMonotone) {
+    std::vector<double> seen;
+    Options o = curvature_flow(true);
+    o.progress = [&seen](double f) { seen.push_back(f); };
+    fairing::fair(noisy_torus(0.25, 7), {}, o);
+    ASSERT_FALSE(seen.empty());
+    EXPECT_GT(seen.front(), 0.0);
+    EXPECT_LE(seen.front(), 0.1);
+    for (std::size_t k = 1; k < seen.size(); ++k) EXPECT_GT(seen[k], seen[k - 1]);
+    EXPECT_EQ(seen.back(), 1.0);
+}
