@@ -295,26 +295,23 @@ def case_json():
           "--volume-restoration scale lost the volume: %r" % b)
     check(ML.read_ply_vertices(work("offset.ply")) != ML.read_ply_vertices(work("scaled.ply")),
           "--volume-restoration scale gave the offset's result")
-    # --keep-drift: the curvature flow without its drift translation (Options::cancel_drift)
-    a = run_json([src, work("nodrift.ply"), "--operator", "curvature", "--time-step", 22.5])
-    b = run_json([src, work("drift.ply"), "--operator", "curvature", "--time-step", 22.5,
-                  "--keep-drift"])
-    for j in (a, b):
-        check(abs(j["volume_after"] - j["volume_before"]) <= 1e-6 * j["volume_before"],
-              "the curvature flow lost the volume: %r" % j)
-    check(ML.read_ply_vertices(work("nodrift.ply")) != ML.read_ply_vertices(work("drift.ply")),
-          "--keep-drift gave the default's result")
-    # --uniform-offset: the curvature flow's volume offset not shaped (Options::shaped_offset)
+    # --keep-drift: the curvature flow without its drift translation (Options::cancel_drift);
+    # --uniform-offset: its volume offset not shaped (Options::shaped_offset), on a torus, whose
+    # curvature varies
     torus = work("torus.ply")
     ML.write_ply(torus, *noisy_torus())
-    a = run_json([torus, work("shaped.ply"), "--operator", "curvature", "--time-step", 60])
-    b = run_json([torus, work("uniform.ply"), "--operator", "curvature", "--time-step", 60,
-                  "--uniform-offset"])
-    for j in (a, b):
-        check(abs(j["volume_after"] - j["volume_before"]) <= 1e-6 * j["volume_before"],
-              "the curvature flow lost the torus's volume: %r" % j)
-    check(ML.read_ply_vertices(work("shaped.ply")) != ML.read_ply_vertices(work("uniform.ply")),
-          "--uniform-offset gave the default's result")
+    for flag, mesh, time_step in (("--keep-drift", src, 22.5), ("--uniform-offset", torus, 60)):
+        name = flag.lstrip("-")
+        a = run_json([mesh, work(name + "-off.ply"), "--operator", "curvature",
+                      "--time-step", time_step])
+        b = run_json([mesh, work(name + "-on.ply"), "--operator", "curvature",
+                      "--time-step", time_step, flag])
+        for j in (a, b):
+            check(abs(j["volume_after"] - j["volume_before"]) <= 1e-6 * j["volume_before"],
+                  "the curvature flow lost the volume: %r" % j)
+        check(ML.read_ply_vertices(work(name + "-off.ply")) !=
+              ML.read_ply_vertices(work(name + "-on.ply")),
+              flag + " gave the default's result")
     # below 50,000 vertices the solver always runs on one thread: --threads changes nothing
     a = run_json([src, work("t1.ply"), "--threads", 1])
     b = run_json([src, work("t2.ply"), "--threads", 2])
