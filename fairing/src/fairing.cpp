@@ -489,7 +489,11 @@ void Run::shape_offset() {
         }
         return true;
     };
-    offset_shape_ = detail::curvature_offset_shape(problem).weight;
+    try {
+        offset_shape_ = detail::curvature_offset_shape(problem).weight;
+    } catch (const Error&) {  // a pilot that fails leaves the offset uniform; the run goes on
+        offset_shape_.clear();
+    }
 }
 
 bool Run::cancels_drift(std::size_t c) const {
