@@ -14,18 +14,25 @@
 //      offset, as fair() would;
 //   2. its mean curvature, H_i = -n_i . (L x)_i (eq. 14's L at the pilot, cotangents clamped as
 //      the operator clamps them; area-weighted vertex normals), smoothed over the mesh's edges
-//      by kSmoothingPasses half steps to the one-ring mean;
+//      by kShapeSmoothingPasses half steps to the one-ring mean;
 //   3. shrunk towards its component's mean by the share of its variance that the noise does not
 //      explain (James and Stein's shrinkage, with the noise's part measured, not modelled): the
 //      same recipe on the input plus a second draw of Gaussian noise along the normals at the
 //      estimated level gives a second field, and var(second - first) / var(first) is the noise's
-//      share. A share below kLeastShare counts as none (on a coarse irregular sphere the discrete
-//      curvature's own variation with the sampling reads as signal: 0.24 on a 3 k-face sphere at
-//      a tenth of an edge of noise, whose offset should be uniform);
+//      share. A share kept below kLeastShare counts as none: on a sphere sampled at two densities
+//      the discrete curvature's own variation with the sampling reads as signal (up to 0.46 kept
+//      on the study's spheres, whose offset should be uniform; the torus and the scans keep 0.64
+//      and more, but at 1 edge of noise the torus 0.04);
 //   4. clamped at 0 (no vertex is pushed inwards to restore volume) and scaled to mean 1 over the
 //      component's data vertices.
 // A component whose share counts as none keeps the uniform offset (w = 1 exactly), so a sphere
 // restores as before, bit for bit.
+//
+// Limits: the shape is the input's, fixed for all steps, so it holds while the steps lose little
+// volume; on a torus it makes strong steps nearly harmless to the linear model of the automatic
+// strength, whose risk is then flat where the true error still rises, and the choice misses the
+// best fixed step by up to 2.2x its error (L^2 x2 at a tenth of an edge), though nearly every
+// automatic error fell (auto-gap.md, section 24).
 //
 // Conventions: rows past `data_vertices` (virtual vertices) are not data and get no weight; only
 // vertices of restored closed components (component_of >= 0) get one; the others' entries are 1.
@@ -69,7 +76,8 @@ struct OffsetShapeProblem {
 };
 
 // What the shape found: w per data vertex (empty when every component keeps the uniform
-// offset), and per component the noise's share (1 - the share kept; for tests and studies).
+// offset), and per component the share of the field's variance kept as signal (0: uniform; for
+// tests and studies).
 struct OffsetShape {
     std::vector<double> weight;
     std::vector<double> kept_share;
