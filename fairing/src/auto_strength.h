@@ -124,9 +124,6 @@ struct StrengthProblem {
     // the least-squares translation of its normal displacement (Options::cancel_drift); the
     // risk's residual loses that translation. Empty: none is.
     std::vector<char> cancel_drift;
-    // Per data vertex the shape w of the normal offset (Options::shaped_offset, offset_shape.h):
-    // a restored component is offset by t w_i n_i, and the residual loses that. Null: w = 1.
-    const std::vector<double>* offset_shape = nullptr;
     // The noise level when the caller has estimated it already (noise_level()); 0: estimated.
     double noise_level = 0;
     std::function<void(double)> progress;  // fraction of the estimate done, in [0, 1]

@@ -701,7 +701,6 @@ void Run::choose_time_step() {
                                                                                            : 0);
         problem.cancel_drift.push_back(cancels_drift(c) ? 1 : 0);
     }
-    problem.offset_shape = offset_shape_.empty() ? nullptr : &offset_shape_;
     problem.noise_level = noise_level_;
     if (options_.progress) problem.progress = [this](double f) { report_progress(kShare * f); };
     if (options_.op == Operator::Umbrella) release_pairing();  // never assembled again

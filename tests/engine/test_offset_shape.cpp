@@ -155,15 +155,18 @@ TEST(OffsetShape, KeepsTheVolumeExactly) {
     }
 }
 
-// The restored torus lies closer to the true one, at a given time step and at the automatic one,
-// which models the shaped offset and so chooses for it.
+// The restored torus lies closer to the true one, at a given time step (by 5 % or more) and at
+// the automatic one, which is the uniform offset's (the estimate models the uniform offset:
+// auto-gap.md section 24) and where the shape gains less on this regular torus (3-4 %).
 TEST(OffsetShape, RestoresCloserToTheTrueTorus) {
     for (std::uint64_t seed : {3, 4}) {
         const TriangleMesh m = noisy_torus(0.25, seed);
         for (const fairing::OptionalDouble time_step : kAutomaticAndGiven) {
             const Result shaped = fairing::fair(m, {}, curvature_flow(true, time_step));
             const Result uniform = fairing::fair(m, {}, curvature_flow(false, time_step));
-            EXPECT_LT(torus_error(shaped.positions), 0.95 * torus_error(uniform.positions))
+            EXPECT_EQ(shaped.time_step, uniform.time_step);
+            EXPECT_LT(torus_error(shaped.positions),
+                      (time_step.has_value() ? 0.95 : 0.98) * torus_error(uniform.positions))
                 << "seed " << seed << (time_step.has_value() ? ", time step 60" : ", automatic");
         }
     }
