@@ -95,7 +95,7 @@ QString FilterImplicitFairing::filterInfo(fairing_plugin::FilterId id) const
                   "from convex, strongly curved parts goes back there. <b>Pick it when only the "
                   "shape should change</b>, and for smooth shapes: on the two-density sphere at "
                   "noise 0.25 edge it reached 0.017 edge (CGAL's smooth_shape at its best: "
-                  "0.027), on a torus 0.033 (0.037 with a uniform volume offset).");
+                  "0.027), on a torus 0.035 (0.037 with a uniform volume offset).");
         break;
     }
     return what + tr(

@@ -7,8 +7,7 @@
 // the convex, strongly curved parts (the outer rim of a torus, a thin limb) and a uniform normal
 // offset puts it back everywhere: on the torus with a quarter edge of noise the restored result
 // errs 12 % more than one restored where the volume went (bench/results/issue11/auto-gap.md,
-// section 23). The offset that fair() and the automatic strength's model then use is t w_i n_i
-// with w_i from the input alone:
+// section 23). The offset fair() then uses is t w_i n_i with w_i from the input alone:
 //   1. a pilot: the input after one implicit first-order curvature step at time step
 //      kPilotTimeStep (lambda_dt in mean edges squared), its volume restored by the uniform
 //      offset, as fair() would;
@@ -28,11 +27,11 @@
 // A component whose share counts as none keeps the uniform offset (w = 1 exactly), so a sphere
 // restores as before, bit for bit.
 //
-// Limits: the shape is the input's, fixed for all steps, so it holds while the steps lose little
-// volume; on a torus it makes strong steps nearly harmless to the linear model of the automatic
-// strength, whose risk is then flat where the true error still rises, and the choice misses the
-// best fixed step by up to 2.2x its error (L^2 x2 at a tenth of an edge), though nearly every
-// automatic error fell (auto-gap.md, section 24).
+// The automatic strength models the uniform offset, not this one: the shape is the input's, fixed
+// for all steps, and on a torus it makes strong steps nearly harmless to the estimate's linear
+// model while the true error still rises, so a modelled shape let the choice run away (the demo's
+// torus: 794 instead of 69, twice the error; auto-gap.md, section 24). At the uniform offset's
+// choice the shape restores 3-8 % closer on tori, up to 3 % on scans.
 //
 // Conventions: rows past `data_vertices` (virtual vertices) are not data and get no weight; only
 // vertices of restored closed components (component_of >= 0) get one; the others' entries are 1.
