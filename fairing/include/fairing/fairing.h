@@ -164,7 +164,7 @@ struct Options {
     // automatic strength chooses as for the uniform offset: modelling this one let its choice
     // run away on tori, where the shaped offset makes strong steps nearly harmless to the model
     // but not to the shape (bench/results/issue11/auto-gap.md, section 24). Costs two first-order
-    // steps and three assemblies of the operator (+9 % on the 1.2 M-face bunny's one-click run).
+    // steps and three assemblies of the operator (+11 % on the 1.2 M-face bunny's one-click run).
     bool shaped_offset = true;
     OpenInvariant open_invariant = OpenInvariant::None;
     // Solver (Appendix A): stop when ||A X - b|| < tolerance ||b|| for x, y and z. b is the
