@@ -21,13 +21,7 @@ namespace fairing {
 namespace detail {
 
 Positions robust_normals(const HalfEdgeMesh& mesh, const Positions& x) {
-    const int n = mesh.num_vertices();
-    Positions area = Positions::Zero(n, 3);
-    for (const Triangle& t : mesh.faces()) {
-        const Vec3 a = row(x, t[0]);
-        const Eigen::RowVector3d normal = (row(x, t[1]) - a).cross(row(x, t[2]) - a).transpose();
-        for (int k = 0; k < 3; ++k) area.row(t[k]) += normal;
-    }
+    const Positions area = area_normal_sums(mesh, x);
     // Averaging over the one-ring tames the noise's tilt of the normals (a quarter-edge noise
     // tilts single-face normals by ~15 degrees), which would otherwise leak tangential sliding
     // into the normal residual.
@@ -36,11 +30,7 @@ Positions robust_normals(const HalfEdgeMesh& mesh, const Positions& x) {
         const Eigen::RowVector3d sum = area.row(t[0]) + area.row(t[1]) + area.row(t[2]);
         for (int k = 0; k < 3; ++k) smooth.row(t[k]) += sum;
     }
-    for (int i = 0; i < n; ++i) {
-        const double length = smooth.row(i).norm();
-        if (length > 0) smooth.row(i) /= length;
-        else smooth.row(i).setZero();
-    }
+    normalize_rows(smooth);
     return smooth;
 }
 
@@ -483,12 +473,6 @@ std::vector<double> traces(const Context& ctx, const Lanczos& z, double count,
     return out;
 }
 
-std::uint64_t mix(std::uint64_t v) {  // splitmix64: probe signs independent of thread count
-    v += 0x9e3779b97f4a7c15ull;
-    v = (v ^ (v >> 30)) * 0xbf58476d1ce4e5b9ull;
-    v = (v ^ (v >> 27)) * 0x94d049bb133111ebull;
-    return v ^ (v >> 31);
-}
 
 // First basis vector of the movement: u = D^-1/2 C x for the positions.
 void start_movement(Context& ctx, Lanczos& u) {
@@ -525,7 +509,7 @@ void start_probes(Context& ctx, Lanczos& z, double count) {
     z.current.setZero(n, 3);
     for (int i = 0; i < n; ++i) {
         if (!ctx.data[i]) continue;
-        const std::uint64_t bits = mix(static_cast<std::uint64_t>(i));
+        const std::uint64_t bits = splitmix64(static_cast<std::uint64_t>(i));
         for (int c = 0; c < 3; ++c) z.current(i, c) = ((bits >> c) & 1 ? 1.0 : -1.0) / std::sqrt(d_of(ctx.p, i));
     }
     for (int c = 0; c < 3; ++c) {
@@ -633,7 +617,7 @@ std::unique_ptr<Perturbation> perturb(const Context& ctx, const Positions& norma
     mc->x = *p.x;
     for (int i = 0; i < p.data_vertices; ++i) {
         if (!ctx.data[i]) continue;
-        const bool plus = mix(static_cast<std::uint64_t>(i) ^ 0x27d4eb2f165667c5ull) & 1;
+        const bool plus = splitmix64(static_cast<std::uint64_t>(i) ^ 0x27d4eb2f165667c5ull) & 1;
         mc->sign[i] = plus ? 1 : -1;
         const Eigen::RowVector3d probe = (plus ? 1.0 : -1.0) * normals.row(i);
         mc->x.row(i) += mc->eps * probe;
@@ -1151,7 +1135,7 @@ private:
         int next = 0;
         for (int i = 0; i < ctx.n; ++i) {
             if (!ctx.data[i]) continue;
-            const std::uint64_t h = mix(static_cast<std::uint64_t>(i) + 0x5bd1e995ull);
+            const std::uint64_t h = splitmix64(static_cast<std::uint64_t>(i) + 0x5bd1e995ull);
             l.bucket[i] = l.exact ? next++ : static_cast<int>(h % static_cast<std::uint64_t>(l.rows));
             if (!l.exact) l.sign[i] = (h >> 40) & 1 ? 1.0f : -1.0f;
         }
@@ -1492,7 +1476,9 @@ double noise_level(const StrengthProblem& p, const Positions& normals) {
 
 StrengthEstimate estimate_strength(const StrengthProblem& p) {
     StrengthEstimate e;
-    const Positions normals = strength_normals(p);
+    Positions computed;
+    if (!p.normals) computed = strength_normals(p);
+    const Positions& normals = p.normals ? *p.normals : computed;
     e.noise_level = p.noise_level > 0 ? p.noise_level : noise_level(p, normals);
     if (!(e.noise_level > 0)) return e;
     if (!p.pilot || !p.assemble_at) return risk_minimum(p, normals, e);

@@ -124,7 +124,10 @@ struct StrengthProblem {
     // the least-squares translation of its normal displacement (Options::cancel_drift); the
     // risk's residual loses that translation. Empty: none is.
     std::vector<char> cancel_drift;
-    // The noise level when the caller has estimated it already (noise_level()); 0: estimated.
+    // The normals and the noise level when the caller has them already (strength_normals(),
+    // noise_level(): fair() computes them once, for the curvature flow's offset shape too);
+    // null and 0: computed here.
+    const Positions* normals = nullptr;
     double noise_level = 0;
     std::function<void(double)> progress;  // fraction of the estimate done, in [0, 1]
     // The operator assembled at other positions (same rows, virtual vertices included), for the

@@ -227,7 +227,10 @@ private:
     std::vector<char> ever_free_;   // moved by some step
     std::vector<double> target_;    // per component: volume (closed) or area (open), or 0
     std::vector<double> offset_shape_;  // Options::shaped_offset, per data vertex; empty: uniform
-    double noise_level_ = 0;        // estimated for the shape (0: not yet)
+    // The automatic strength's normals and noise level, computed once for the offset shape and
+    // the estimate (empty and 0: not yet).
+    Positions strength_normals_;
+    double noise_level_ = 0;
     Positions x_;                   // centred working positions (plus virtual vertices)
     SolveStats previous_surface_solve_;  // the last step's (solver.h, SolveSettings::previous)
     SparseOperator surface_, curve_;
@@ -463,7 +466,9 @@ void Run::shape_offset() {
     measured.x = &x_;
     measured.mesh = &he_;
     measured.data_vertices = n_;
-    noise_level_ = detail::noise_level(measured, detail::strength_normals(measured));
+    strength_normals_ = detail::strength_normals(measured);
+    noise_level_ = detail::noise_level(measured, strength_normals_);
+    if (options_.time_step.has_value()) Positions().swap(strength_normals_);  // no estimate
     problem.mesh = &he_;
     problem.op = &surface_;
     problem.x = &x_;
@@ -701,6 +706,7 @@ void Run::choose_time_step() {
                                                                                            : 0);
         problem.cancel_drift.push_back(cancels_drift(c) ? 1 : 0);
     }
+    problem.normals = strength_normals_.rows() > 0 ? &strength_normals_ : nullptr;
     problem.noise_level = noise_level_;
     if (options_.progress) problem.progress = [this](double f) { report_progress(kShare * f); };
     if (options_.op == Operator::Umbrella) release_pairing();  // never assembled again
@@ -712,6 +718,7 @@ void Run::choose_time_step() {
             return op;
         };
     const detail::StrengthEstimate e = detail::estimate_strength(problem);
+    Positions().swap(strength_normals_);
     progress_offset_ = std::max(progress_, kShare);
     time_step_ = e.time_step;
     result_.noise_level = e.noise_level;

@@ -13,34 +13,18 @@ namespace fairing {
 namespace detail {
 namespace {
 
-// Unit area-weighted vertex normals of the data vertices (0 where undefined).
-Positions area_normals(const HalfEdgeMesh& mesh, const Positions& x, int data) {
-    Positions normals = Positions::Zero(data, 3);
-    for (const Triangle& t : mesh.faces()) {
-        const Vec3 a = row(x, t[0]);
-        const Eigen::RowVector3d area_normal =
-            (row(x, t[1]) - a).cross(row(x, t[2]) - a).transpose();
-        for (int v : t)
-            if (v < data) normals.row(v) += area_normal;
-    }
-    for (int i = 0; i < data; ++i) {
-        const double length = normals.row(i).norm();
-        if (length > 0) normals.row(i) /= length;
-    }
+// Unit area-weighted vertex normals (0 where undefined).
+Positions area_normals(const HalfEdgeMesh& mesh, const Positions& x) {
+    Positions normals = area_normal_sums(mesh, x);
+    normalize_rows(normals);
     return normals;
 }
 
 // A standard normal deviate per vertex, from its index alone (Box-Muller on two splitmix64
-// draws), so that the second draw does not depend on the thread count or the standard library.
+// draws).
 double gaussian(int i) {
-    const auto bits = [](std::uint64_t v) {
-        v += 0x9e3779b97f4a7c15ull;
-        v = (v ^ (v >> 30)) * 0xbf58476d1ce4e5b9ull;
-        v = (v ^ (v >> 27)) * 0x94d049bb133111ebull;
-        return v ^ (v >> 31);
-    };
-    const auto uniform = [&](std::uint64_t salt) {  // in (0, 1]
-        return (static_cast<double>(bits(static_cast<std::uint64_t>(i) ^ salt) >> 11) + 1) *
+    const auto uniform = [i](std::uint64_t salt) {  // in (0, 1]
+        return (static_cast<double>(splitmix64(static_cast<std::uint64_t>(i) ^ salt) >> 11) + 1) *
                0x1.0p-53;
     };
     const double u = uniform(0x5be0cd19137e2179ull), v = uniform(0x1f83d9abfb41bd6bull);
@@ -93,7 +77,7 @@ std::vector<double> curvature_field(const OffsetShapeProblem& p, const SparseOpe
     if (!keeps_masses(p, at)) return {};
     Positions lx;
     at.apply_l(x, lx);
-    const Positions normals = area_normals(*p.mesh, x, n);
+    const Positions normals = area_normals(*p.mesh, x);
     std::vector<double> field(n, 0.0), next(n, 0.0);
     for (int i = 0; i < n; ++i)
         if (p.component_of[i] >= 0) field[i] = -normals.row(i).dot(lx.row(i));
@@ -126,7 +110,7 @@ OffsetShape curvature_offset_shape(const OffsetShapeProblem& p) {
     const std::vector<double> first = curvature_field(p, p.op, *p.x, 0);
     if (first.empty()) return shape;
     Positions redrawn = *p.x;
-    const Positions normals = area_normals(*p.mesh, *p.x, n);
+    const Positions normals = area_normals(*p.mesh, *p.x);
     for (int i = 0; i < n; ++i)
         if ((*p.free)[i]) redrawn.row(i) += p.noise_level * gaussian(i) * normals.row(i);
     const std::vector<double> second = curvature_field(p, nullptr, std::move(redrawn), 1);

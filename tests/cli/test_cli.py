@@ -47,32 +47,6 @@ def gen(kind, name, quality=None):
     return work(name)
 
 
-def noisy_torus(nu=48, nv=16, major=1.0, minor=0.4, seed=5):
-    """A torus grid with Gaussian noise of a quarter of its mean edge along the tube's normals."""
-    import random
-    rng = random.Random(seed)
-    V, F = [], []
-    for j in range(nv):
-        for i in range(nu):
-            a, b = 2 * math.pi * i / nu, 2 * math.pi * j / nv
-            n = (math.cos(b) * math.cos(a), math.cos(b) * math.sin(a), math.sin(b))
-            V.append([major * math.cos(a) + minor * n[0], major * math.sin(a) + minor * n[1],
-                      minor * n[2]])
-    for j in range(nv):
-        for i in range(nu):
-            p00, p10 = j * nu + i, j * nu + (i + 1) % nu
-            p01, p11 = ((j + 1) % nv) * nu + i, ((j + 1) % nv) * nu + (i + 1) % nu
-            F += [(p00, p10, p11), (p00, p11, p01)]
-    e = ML.mean_edge(V, F)
-    for j in range(nv):
-        for i in range(nu):
-            a, b = 2 * math.pi * i / nu, 2 * math.pi * j / nv
-            n = (math.cos(b) * math.cos(a), math.cos(b) * math.sin(a), math.sin(b))
-            d = rng.gauss(0, 0.25 * e)
-            V[j * nu + i] = [V[j * nu + i][k] + d * n[k] for k in range(3)]
-    return V, F
-
-
 def run(args, expect=0, tool=None):
     """Runs the tool; returns (stdout, stderr). expect: exit status, or 'nonzero'."""
     cmd = [tool or ARGS.tool] + [str(a) for a in args]
@@ -296,10 +270,10 @@ def case_json():
     check(ML.read_ply_vertices(work("offset.ply")) != ML.read_ply_vertices(work("scaled.ply")),
           "--volume-restoration scale gave the offset's result")
     # --keep-drift: the curvature flow without its drift translation (Options::cancel_drift);
-    # --uniform-offset: its volume offset not shaped (Options::shaped_offset), on a torus, whose
-    # curvature varies
-    torus = work("torus.ply")
-    ML.write_ply(torus, *noisy_torus())
+    # --uniform-offset: its volume offset not shaped (Options::shaped_offset), on the demo's
+    # noisy torus, whose curvature varies
+    DM.main(["gen", ARGS.work])
+    torus = work("noisy.ply")
     for flag, mesh, time_step in (("--keep-drift", src, 22.5), ("--uniform-offset", torus, 60)):
         name = flag.lstrip("-")
         a = run_json([mesh, work(name + "-off.ply"), "--operator", "curvature",
