@@ -31,7 +31,7 @@
 // for all steps, and on a torus it makes strong steps nearly harmless to the estimate's linear
 // model while the true error still rises, so a modelled shape let the choice run away (the demo's
 // torus: 794 instead of 69, twice the error; auto-gap.md, section 24). At the uniform offset's
-// choice the shape restores 3-8 % closer on tori, up to 3 % on scans.
+// choice the shape restores 3-8 % closer on tori, up to 4 % on scans.
 //
 // Conventions: rows past `data_vertices` (virtual vertices) are not data and get no weight; only
 // vertices of restored closed components (component_of >= 0) get one; the others' entries are 1.

@@ -157,7 +157,7 @@ TEST(OffsetShape, KeepsTheVolumeExactly) {
 
 // The restored torus lies closer to the true one, at a given time step (by 5 % or more) and at
 // the automatic one, which is the uniform offset's (the estimate models the uniform offset:
-// auto-gap.md section 24) and where the shape gains less on this regular torus (3-4 %).
+// auto-gap.md section 24) and where the shape gains less on this regular torus (4-5 %).
 TEST(OffsetShape, RestoresCloserToTheTrueTorus) {
     for (std::uint64_t seed : {3, 4}) {
         const TriangleMesh m = noisy_torus(0.25, seed);
