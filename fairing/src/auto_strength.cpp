@@ -718,7 +718,7 @@ constexpr int kGrid = 16;
 // Restored components whose restoration the sketch applies in its own space (the largest ones;
 // see Sketch::restored): each holds two sketched fields of kSketch rows.
 constexpr int kSketchedComponents = 16;
-// Sums per restored component in Sketch::add: a . n.r, s . n.r and 1 . n.r per column; then
+// Sums per restored component in Sketch::add: a . n.r, s . n.r and w . n.r per column; then
 // per sketched component, drift-cancelled or not, its three moments m_d per column.
 constexpr int kComponentSums = 9;
 constexpr int kMomentSums = 9 * kSketchedComponents;
@@ -736,22 +736,26 @@ class Sketch {
 public:
     // The volume restoration after each step (sections 3.1-3.2) undoes the part of the normal
     // residual along one field per restored component: s_i = n_i . (x_i - centroid) for a
-    // rescaling, 1 on the free vertices for a normal offset, by the multiple that restores the
-    // volume (see restored()). Three linear functionals of r per component, kept exactly beside
-    // the sketch: a . n.r (the volume lost), s . n.r and 1 . n.r (a_i: vertex areas).
+    // rescaling, w on the free vertices for a normal offset (its shape: 1, or
+    // StrengthProblem::offset_shape), by the multiple that restores the volume (see restored()).
+    // Three linear functionals of r per component, kept exactly beside the sketch: a . n.r (the
+    // volume lost), s . n.r and w . n.r (a_i: vertex areas).
     //
     // A component whose drift is cancelled (Options::cancel_drift, `drift_cancelled`) is translated
     // by the least-squares translation of its normal residual rho (after the restoration):
     // tau = P^-1 sum a_i n_i rho_i, P = sum a_i n_i n_i^T, and loses n_i . tau. With the
     // restoration's residual (1 - beta) s + beta n.r or n.r - t, that is
     // tau = P^-1 (beta m + (1 - beta) q_s) or P^-1 (m - t q_1), where m = sum a n n.r are three
-    // more functionals per column and q_s = sum a n s, q_1 = sum a n constants; n . tau is
+    // more functionals per column and q_s = sum a n s, q_1 = sum a w n constants; n . tau is
     // formed in the sketch's space from the sketched normal components n_d of the component.
     // Only the kSketchedComponents largest are so modelled (a bounded memory; the translation
     // of smaller ones is left in the residual).
     struct Restoration {
         std::vector<int> component;  // per data vertex, -1: not restored
         std::vector<double> field, area;
+        // Per data vertex the normal offset's shape w (StrengthProblem::offset_shape): the
+        // offset is t w_i, and its functional w . n.r in place of 1 . n.r. Empty: all 1.
+        std::vector<double> shape;
         std::vector<char> offset;  // per component, as StrengthProblem::offset
         std::vector<char> drift_cancelled;  // per component: its drift cancelled
         const Positions* normals = nullptr;
@@ -804,6 +808,8 @@ public:
         const int components_known = static_cast<int>(layout_->restoration.component.size());
         const double* area = layout_->restoration.area.data();
         const double* field = layout_->restoration.field.data();
+        const double* shape =
+            layout_->restoration.shape.empty() ? nullptr : layout_->restoration.shape.data();
         const char* drift_cancelled = layout_->restoration.drift_cancelled.data();
         const bool any_drift_cancelled = layout_->drift_cancelled;
         const int* component_slot = layout_->slot.data();
@@ -847,7 +853,7 @@ public:
                     if (b >= 0 || k >= 0)
                         accumulate(twin_slot, b, k, sign[i], k >= 0 ? area[i] : 0.0,
                                    k >= 0 ? field[i] : 0.0, nv + 3 * i, ti, twin_bucket,
-                                   twin_component, nullptr, 0);
+                                   twin_component, nullptr, 0, shape ? shape[i] : 1.0);
                     if (moment_slot >= 0)
                         add_moments(twin_slot, area[i], nv + 3 * i, ti,
                                     twin_component + kComponentSums * static_cast<std::size_t>(nc) +
@@ -855,7 +861,8 @@ public:
                 }
                 if (b < 0 && k < 0 && bi == 0) continue;
                 accumulate(slot, b, k, sign[i], k >= 0 ? area[i] : 0.0, k >= 0 ? field[i] : 0.0,
-                           nv + 3 * i, vi, to_bucket, to_component, to_probe, bi);
+                           nv + 3 * i, vi, to_bucket, to_component, to_probe, bi,
+                           shape ? shape[i] : 1.0);
                 if (moment_slot >= 0)
                     add_moments(slot, area[i], nv + 3 * i, vi, to_moment + 9 * moment_slot);
             }
@@ -932,7 +939,8 @@ private:
     // (k >= 0) and, with a probe sign bi, the probe's sums.
     static void accumulate(const std::array<Eigen::Index, 3>& slot, int b, int k, float sign,
                            double area, double field, const double* n, const double* v,
-                           double* to_bucket, double* to_component, double* to_probe, int bi) {
+                           double* to_bucket, double* to_component, double* to_probe, int bi,
+                           double shape) {
         for (int c = 0; c < 3; ++c) {
             if (slot[c] < 0) continue;
             const double nv_c = n[c] * v[c];
@@ -941,7 +949,7 @@ private:
             if (k < 0) continue;
             to_component[9 * k + c] += area * nv_c;
             to_component[9 * k + 3 + c] += field * nv_c;
-            to_component[9 * k + 6 + c] += nv_c;
+            to_component[9 * k + 6 + c] += shape * nv_c;
         }
     }
     // A drift-cancelled component's vertex: its part of m_d = sum a n_d n.r.
@@ -1064,7 +1072,7 @@ private:
                 (offset == 2 && std::abs(beta * beta * beta - 1) <= kMaxOffsetChange)) {
                 const double t = by_volume / l.area[k];
                 if (slot >= 0) along_one(slot) = -t;
-                else extra += t * t * l.count[k] - 2 * t * by_sum;
+                else extra += t * t * l.shape2[k] - 2 * t * by_sum;
                 if (drift_cancelled)
                     along_normal.segment<3>(3 * slot) =
                         -l.normal_moment[k].solve(m - t * l.sum_normal[k]);
@@ -1091,9 +1099,10 @@ private:
     // their sketches; fixed once made, so that sketches of the same rows can share it.
     struct Layout {
         Restoration restoration;
-        std::vector<double> volume, area, field2, count;  // per component: a . s, sum a, |s|^2, N
+        // Per component: a . s, sum a w (w the offset's shape, 1 without), |s|^2, N and |w|^2.
+        std::vector<double> volume, area, field2, count, shape2;
         // Per drift-cancelled component: P = sum a n n^T (factored), q_s = sum a n s and
-        // q_1 = sum a n.
+        // q_1 = sum a w n.
         std::vector<Eigen::LDLT<Eigen::Matrix3d>> normal_moment;
         std::vector<Eigen::Vector3d> field_normal, sum_normal;
         bool drift_cancelled = false;  // for some sketched component (Restoration)
@@ -1119,13 +1128,16 @@ private:
         l.area.assign(nc, 0.0);
         l.field2.assign(nc, 0.0);
         l.count.assign(nc, 0.0);
+        l.shape2.assign(nc, 0.0);
         for (std::size_t i = 0; i < r.component.size(); ++i) {
             const int k = r.component[i];
             if (k < 0) continue;
+            const double w = r.shape.empty() ? 1.0 : r.shape[i];
             l.volume[k] += r.area[i] * r.field[i];
-            l.area[k] += r.area[i];
+            l.area[k] += r.area[i] * w;
             l.field2[k] += r.field[i] * r.field[i];
             l.count[k] += 1;
+            l.shape2[k] += w * w;
         }
         l.total = data_count;
         l.exact = data_count <= kSketch;
@@ -1161,7 +1173,8 @@ private:
             const int k = r.component[i];
             if (k < 0 || l.slot[k] < 0 || l.bucket[i] < 0) continue;
             l.field_sketch(l.bucket[i], l.slot[k]) += static_cast<double>(l.sign[i]) * r.field[i];
-            l.one_sketch(l.bucket[i], l.slot[k]) += static_cast<double>(l.sign[i]);
+            const double w = r.shape.empty() ? 1.0 : r.shape[i];
+            l.one_sketch(l.bucket[i], l.slot[k]) += static_cast<double>(l.sign[i]) * w;
             if (!l.drift_cancelled || !r.drift_cancelled[k]) continue;
             const Eigen::Vector3d n = r.normals->row(i).transpose();
             for (int d = 0; d < 3; ++d)
@@ -1169,7 +1182,7 @@ private:
                     static_cast<double>(l.sign[i]) * n(d);
             moments[k] += r.area[i] * n * n.transpose();
             l.field_normal[k] += r.area[i] * r.field[i] * n;
-            l.sum_normal[k] += r.area[i] * n;
+            l.sum_normal[k] += r.area[i] * w * n;
         }
         for (const Eigen::Matrix3d& p : moments) l.normal_moment.emplace_back(p);
         return made;
@@ -1447,6 +1460,11 @@ Sketch::Restoration restoration(const StrengthProblem& p, const Positions& norma
         if (k < 0 || !(*p.free)[i] || !found[k]) continue;
         r.component[i] = k;
         r.field[i] = normals.row(i).dot(p.x->row(i) - centroid[k]);
+    }
+    if (p.offset_shape) {
+        r.shape.assign(n, 1.0);
+        for (int i = 0; i < n; ++i)
+            if (r.component[i] >= 0) r.shape[i] = (*p.offset_shape)[i];
     }
     r.offset = p.offset;
     r.components = static_cast<int>(p.offset.size());

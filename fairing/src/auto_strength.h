@@ -128,6 +128,9 @@ struct StrengthProblem {
     // noise_level(): fair() computes them once, for the curvature flow's offset shape too);
     // null and 0: computed here.
     const Positions* normals = nullptr;
+    // Per data vertex the shape w of the normal offset (Options::shaped_offset, offset_shape.h):
+    // a restored component is offset by t w_i n_i, and the residual loses that. Null: w = 1.
+    const std::vector<double>* offset_shape = nullptr;
     double noise_level = 0;
     std::function<void(double)> progress;  // fraction of the estimate done, in [0, 1]
     // The operator assembled at other positions (same rows, virtual vertices included), for the

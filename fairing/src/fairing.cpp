@@ -707,6 +707,11 @@ void Run::choose_time_step() {
         problem.cancel_drift.push_back(cancels_drift(c) ? 1 : 0);
     }
     problem.normals = strength_normals_.rows() > 0 ? &strength_normals_ : nullptr;
+    // The first-order curvature flow's loss is its mean curvature, which the shape follows, so
+    // the model restores as fair() will; the L^2 flow's loss follows the shape less well, and
+    // modelling it let the choice run away on tori (auto-gap.md sections 24-25).
+    problem.offset_shape =
+        options_.order == 1 && !offset_shape_.empty() ? &offset_shape_ : nullptr;
     problem.noise_level = noise_level_;
     if (options_.progress) problem.progress = [this](double f) { report_progress(kShare * f); };
     if (options_.op == Operator::Umbrella) release_pairing();  // never assembled again

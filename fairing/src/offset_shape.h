@@ -27,11 +27,15 @@
 // A component whose share counts as none keeps the uniform offset (w = 1 exactly), so a sphere
 // restores as before, bit for bit.
 //
-// The automatic strength models the uniform offset, not this one: the shape is the input's, fixed
-// for all steps, and on a torus it makes strong steps nearly harmless to the estimate's linear
+// The automatic strength models this offset for the first-order flow only, whose loss per step is
+// its mean curvature times the step, the field this shape follows: there the model restores as
+// fair() will, and the choice follows the shape's lower errors (the study's first-order curvature
+// rows 0.968 of the uniform model's errors in geometric mean, the torus's down to 0.65;
+// auto-gap.md, section 25). The L^2 flow's loss is a fourth-order field that the shape follows
+// less well: on a torus the shape makes strong L^2 steps nearly harmless to the estimate's linear
 // model while the true error still rises, so a modelled shape let the choice run away (the demo's
-// torus: 794 instead of 69, twice the error; auto-gap.md, section 24). At the uniform offset's
-// choice the shape restores 3-8 % closer on tori, up to 4 % on scans.
+// torus: 794 instead of 69, twice the error; section 24). There the estimate models the uniform
+// offset, and at its choice the shape restores 3-8 % closer on tori, up to 4 % on scans.
 //
 // Conventions: rows past `data_vertices` (virtual vertices) are not data and get no weight; only
 // vertices of restored closed components (component_of >= 0) get one; the others' entries are 1.

@@ -139,6 +139,13 @@ double ellipsoid_error(const Positions& p) {
 // edge for the umbrella, whose filter does not depend on the data; up to a quarter edge for
 // eq. 11 and eq. 14, whose weights are computed on the noisy mesh: past ~0.4 edges the noise
 // distorts them so much that the linear risk estimate no longer holds (auto_strength.h).
+// Each level's step is 1.2 times the last one's or more, with one exception: the curvature flow's
+// first-order steps at 0.05 and 0.12 edge are both about 12.6, since its shaped volume offset
+// (Options::shaped_offset), which the estimate models for the first order, makes strong steps on
+// this smooth shape nearly harmless and the risk flat there (the best fixed steps 4 and 8, with
+// 0.87 and 1.07 times the error; the uniform offset chooses 2.0 and 15.8, with 1.3 and 1.8 times
+// the shaped one's error). So there each step is at least the last one's, and the strongest
+// noise's three times the weakest's.
 TEST(AutoStrength, StrongerNoiseGivesLargerStep) {
     for (Operator op : meshes::kOperators) {
         const std::vector<double> levels = op == Operator::Umbrella
@@ -146,14 +153,17 @@ TEST(AutoStrength, StrongerNoiseGivesLargerStep) {
                                                : std::vector<double>{0.05, 0.12, 0.25};
         for (int order : {1, 2}) {
             SCOPED_TRACE(testing::Message() << fairing::to_string(op) << " order " << order);
-            double previous = 0;
+            const bool flat_risk = op == Operator::CurvatureFlow && order == 1;
+            double previous = 0, first = 0;
             for (double sigma : levels) {
                 const TriangleMesh m = noisy_ellipsoid(sigma);
                 const fairing::Result r = fairing::fair(m, {}, automatic(op, order));
-                EXPECT_GT(r.time_step, 1.2 * previous) << "noise " << sigma;
+                EXPECT_GT(r.time_step, (flat_risk ? 1.0 : 1.2) * previous) << "noise " << sigma;
                 EXPECT_LT(ellipsoid_error(r.positions), 0.8 * ellipsoid_error(m.positions));
                 previous = r.time_step;
+                if (first == 0) first = r.time_step;
             }
+            EXPECT_GT(previous, 3 * first);
         }
     }
 }

@@ -161,10 +161,12 @@ struct Options {
     // The flow takes the volume from the convex, strongly curved parts (a torus's outer rim, a
     // thin limb), and a uniform offset puts it back everywhere. Where noise or sampling explains
     // most of the curvature's variation (a sphere) the offset stays uniform, bit for bit. The
-    // automatic strength chooses as for the uniform offset: modelling this one let its choice
-    // run away on tori, where the shaped offset makes strong steps nearly harmless to the model
-    // but not to the shape (bench/results/issue11/auto-gap.md, section 24). Costs two first-order
-    // steps and three assemblies of the operator (+11 % on the 1.2 M-face bunny's one-click run).
+    // automatic strength models this offset for first-order steps (whose loss is the mean
+    // curvature the shape follows) and chooses as for the uniform offset for L^2 steps:
+    // modelling it there let the choice run away on tori, where the shaped offset makes strong
+    // steps nearly harmless to the model but not to the shape (bench/results/issue11/
+    // auto-gap.md, sections 24-25). Costs two first-order steps and three assemblies of the
+    // operator (+11 % on the 1.2 M-face bunny's one-click run).
     bool shaped_offset = true;
     OpenInvariant open_invariant = OpenInvariant::None;
     // Solver (Appendix A): stop when ||A X - b|| < tolerance ||b|| for x, y and z. b is the
