@@ -203,6 +203,47 @@ TEST(OffsetShape, FirstOrderAutomaticStrengthModelsTheShape) {
             }
 }
 
+// The first-order choice that models the shape, with a selection, soft weights, several steps
+// and a second closed component (a sphere, whose own offset stays uniform): a finite positive
+// step, every closed component's volume kept, the selection where it was, the torus closer to the
+// true one than the input and than the uniform offset at its own choice (measured 0.71-0.95 of
+// its error).
+TEST(OffsetShape, FirstOrderModelledShapeWithEveryConstraint) {
+    const TriangleMesh torus = noisy_torus(0.25, 6);
+    const int n = static_cast<int>(torus.positions.rows());
+    fairing::Constraints selection, weights;
+    selection.fixed.assign(n, 0);
+    for (int i = 0; i < n; i += 7) selection.fixed[i] = 1;
+    weights.weights.assign(n, 1.0);
+    for (int i = 0; i < n; ++i) weights.weights[i] = 0.3 + 0.7 * ((i * 7) % 10) / 9.0;
+    const TriangleMesh sphere = meshes::translated(
+        meshes::gaussian_radial_noise(meshes::two_density_sphere(3, 0.5), 0.01, 12), Vec3(4, 0, 0));
+    const TriangleMesh both = meshes::merge(torus, sphere);
+    for (int variant = 0; variant < 4; ++variant) {
+        SCOPED_TRACE(testing::Message() << "variant " << variant);
+        Options o = curvature_flow(true);
+        o.order = 1;
+        o.steps = variant == 2 ? 3 : 1;
+        const bool two = variant == 3;
+        fairing::Constraints c = variant == 0 ? selection : variant == 1 ? weights
+                                                                         : fairing::Constraints{};
+        const Result r = fairing::fair(two ? both : torus, c, o);
+        ASSERT_TRUE(r.positions.allFinite());
+        EXPECT_GT(r.time_step, 0);
+        ASSERT_EQ(r.components.size(), two ? 2u : 1u);
+        for (const fairing::ComponentReport& k : r.components)
+            EXPECT_NEAR(k.measure_after / k.measure_before - 1, 0.0, 1e-10);
+        const double error = torus_error(r.positions.topRows(n));
+        EXPECT_LT(error, 0.8 * torus_error(torus.positions));
+        Options uniform = o;
+        uniform.shaped_offset = false;
+        const Result u = fairing::fair(two ? both : torus, c, uniform);
+        EXPECT_LT(error, torus_error(u.positions.topRows(n)));
+        for (int i = 0; i < n && variant == 0; ++i)
+            if (selection.fixed[i]) ASSERT_EQ(r.positions.row(i), torus.positions.row(i));
+    }
+}
+
 TEST(OffsetShape, AnExplicitTimeStepIsUsedAsGiven) {
     const Result r = fairing::fair(noisy_torus(0.25, 5), {}, curvature_flow(true, 37.5));
     EXPECT_FALSE(r.automatic_time_step);
