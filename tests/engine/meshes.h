@@ -329,6 +329,21 @@ inline TriangleMesh merge(const TriangleMesh& a, const TriangleMesh& b) {
     return m;
 }
 
+// Constraints for "every option" tests: every `stride`-th vertex of n selected (hard), or soft
+// weights ramping over 0.3..1 in a fixed pattern.
+inline fairing::Constraints every_nth_fixed(int n, int stride) {
+    fairing::Constraints c;
+    c.fixed.assign(n, 0);
+    for (int i = 0; i < n; i += stride) c.fixed[i] = 1;
+    return c;
+}
+inline fairing::Constraints ramped_weights(int n) {
+    fairing::Constraints c;
+    c.weights.assign(n, 1.0);
+    for (int i = 0; i < n; ++i) c.weights[i] = 0.3 + 0.7 * ((i * 7) % 10) / 9.0;
+    return c;
+}
+
 inline TriangleMesh translated(TriangleMesh m, const Vec3& d) {
     for (int i = 0; i < m.positions.rows(); ++i) set_row(m.positions, i, row(m.positions, i) + d);
     return m;

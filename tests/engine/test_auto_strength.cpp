@@ -486,11 +486,8 @@ TEST(AutoStrength, VaryingWeightsOnASphereLandNearTheBestFixedStep) {
 TEST(AutoStrength, EveryOptionGivesASensibleResult) {
     const TriangleMesh sphere = noisy_sphere(0.2);
     const int n = static_cast<int>(sphere.positions.rows());
-    fairing::Constraints selection, weights;
-    selection.fixed.assign(n, 0);
-    for (int i = 0; i < n; i += 5) selection.fixed[i] = 1;
-    weights.weights.assign(n, 1.0);
-    for (int i = 0; i < n; ++i) weights.weights[i] = 0.3 + 0.7 * ((i * 7) % 10) / 9.0;
+    const fairing::Constraints selection = meshes::every_nth_fixed(n, 5);
+    const fairing::Constraints weights = meshes::ramped_weights(n);
     for (Operator op : meshes::kOperators) {
         for (int order : {1, 2}) {
             for (int variant = 0; variant < 4; ++variant) {

@@ -211,11 +211,8 @@ TEST(OffsetShape, FirstOrderAutomaticStrengthModelsTheShape) {
 TEST(OffsetShape, FirstOrderModelledShapeWithEveryConstraint) {
     const TriangleMesh torus = noisy_torus(0.25, 6);
     const int n = static_cast<int>(torus.positions.rows());
-    fairing::Constraints selection, weights;
-    selection.fixed.assign(n, 0);
-    for (int i = 0; i < n; i += 7) selection.fixed[i] = 1;
-    weights.weights.assign(n, 1.0);
-    for (int i = 0; i < n; ++i) weights.weights[i] = 0.3 + 0.7 * ((i * 7) % 10) / 9.0;
+    const fairing::Constraints selection = meshes::every_nth_fixed(n, 7);
+    const fairing::Constraints weights = meshes::ramped_weights(n);
     const TriangleMesh sphere = meshes::translated(
         meshes::gaussian_radial_noise(meshes::two_density_sphere(3, 0.5), 0.01, 12), Vec3(4, 0, 0));
     const TriangleMesh both = meshes::merge(torus, sphere);
