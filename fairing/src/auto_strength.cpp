@@ -473,7 +473,6 @@ std::vector<double> traces(const Context& ctx, const Lanczos& z, double count,
     return out;
 }
 
-
 // First basis vector of the movement: u = D^-1/2 C x for the positions.
 void start_movement(Context& ctx, Lanczos& u) {
     const int n = ctx.n;
