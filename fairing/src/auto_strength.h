@@ -120,6 +120,10 @@ struct StrengthProblem {
     // (VolumeRestoration::NormalOffset; restore_measure). Empty: nothing restored.
     std::vector<int> restored;
     std::vector<char> offset;
+    // How many restorations mode 2's kMaxOffsetChange applies to one by one: fair() restores
+    // after every step when the steps recompute the operator, else once after the last. fair()
+    // sets the steps for first-order steps only (auto-gap.md section 26); 1: the total.
+    int restorations = 1;
     // Per restored component, as offset: nonzero when fair() translates it after the steps by
     // the least-squares translation of its normal displacement (Options::cancel_drift); the
     // risk's residual loses that translation. Empty: none is.

@@ -236,8 +236,11 @@ TEST(OffsetShape, FirstOrderModelledShapeWithEveryConstraint) {
         uniform.shaped_offset = false;
         const Result u = fairing::fair(two ? both : torus, c, uniform);
         EXPECT_LT(error, torus_error(u.positions.topRows(n)));
-        for (int i = 0; i < n && variant == 0; ++i)
-            if (selection.fixed[i]) ASSERT_EQ(r.positions.row(i), torus.positions.row(i));
+        for (int i = 0; i < n && variant == 0; ++i) {
+            if (selection.fixed[i]) {
+                ASSERT_EQ(r.positions.row(i), torus.positions.row(i));
+            }
+        }
     }
 }
 
@@ -274,4 +277,28 @@ TEST(OffsetShape, ProgressIsMonotone) {
     EXPECT_LE(seen.front(), 0.1);
     for (std::size_t k = 1; k < seen.size(); ++k) EXPECT_GT(seen[k], seen[k - 1]);
     EXPECT_EQ(seen.back(), 1.0);
+}
+
+// Several first-order steps of the curvature flow each restore the volume (fair() restores after
+// every step of a recomputed operator), and a step whose volume changes by more than
+// kMaxOffsetChange is rescaled, not offset, which costs the torus 4-9x its error. The estimate
+// places that switch per step: on the steps' total it held these choices at a third to a half
+// of the best step (1.41-1.57x its error; 1.02-1.12x per step).
+TEST(OffsetShape, SeveralFirstOrderStepsSwitchPerStep) {
+    for (std::uint64_t seed : {3, 4})
+        for (int steps : {2, 3, 4}) {
+            SCOPED_TRACE(testing::Message() << "seed " << seed << ", steps " << steps);
+            const TriangleMesh m = noisy_torus(0.5, seed);
+            Options o = curvature_flow(true);
+            o.order = 1;
+            o.steps = steps;
+            const Result chosen = fairing::fair(m, {}, o);
+            const double error = torus_error(chosen.positions);
+            double best = std::numeric_limits<double>::infinity();
+            for (double time_step = 0.5; time_step < 40; time_step *= 1.1) {
+                o.time_step = time_step;
+                best = std::min(best, torus_error(fairing::fair(m, {}, o).positions));
+            }
+            EXPECT_LT(error, 1.2 * best);
+        }
 }
