@@ -1043,7 +1043,8 @@ private:
     // on each step's own change; with Restoration::restorations the model does too
     // (step_change). Decided on the steps' total, three first-order curvature steps on the
     // study's torus with half an edge of noise switched at time step 2.7 where fair()'s third
-    // step switches at 7-7.5, and the choice erred 1.5-1.6x the best step (auto-gap.md §26).
+    // step switches at 7-7.5, and the choice erred 1.5-1.6x the best step's error
+    // (bench/results/issue11/auto-gap.md §26).
     double restored(const Eigen::Ref<const Eigen::VectorXd>& y,
                     const Eigen::Ref<const Eigen::VectorXd>& sketched, double& gain) const {
         gain = 1;

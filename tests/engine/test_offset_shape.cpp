@@ -281,9 +281,9 @@ TEST(OffsetShape, ProgressIsMonotone) {
 
 // Several first-order steps of the curvature flow each restore the volume (fair() restores after
 // every step of a recomputed operator), and a step whose volume changes by more than
-// kMaxOffsetChange is rescaled, not offset, which costs the torus 4-9x its error. The estimate
-// places that switch per step: on the steps' total it held these choices at a third to a half
-// of the best step (1.41-1.57x its error; 1.02-1.12x per step).
+// kMaxOffsetChange is rescaled, not offset, which cost the study's torus 4-9x its error. The
+// estimate places that switch per step: on the steps' total it held these choices at a third to
+// a half of the best step (1.41-1.57x its error; 1.02-1.12x per step; auto-gap.md section 26).
 TEST(OffsetShape, SeveralFirstOrderStepsSwitchPerStep) {
     for (std::uint64_t seed : {3, 4})
         for (int steps : {2, 3, 4}) {
