@@ -7,21 +7,13 @@
 # switch-factor.diff; prints the runs whose risk is lowest at the grid's top, with the committed
 # study's automatic error over its oracle.
 #   TOOL=BUILD2/bin/fairing-denoise-tool grid_top.py
-import collections
-import json
 import os
 import subprocess
 
-here = os.path.dirname(os.path.abspath(__file__))
-cache = os.environ.get('FAIRING_CACHE', os.path.expanduser('~/.cache/filter_implicit_fairing'))
-meshes = os.path.join(cache, 'bench-meshes')
-best = collections.defaultdict(lambda: (float('inf'), 0))
-with open(os.path.join(here, '../../denoise.jsonl')) as f:
-    for line in f:
-        r = json.loads(line)
-        if r.get('method') == 'ours' and r.get('kind') in ('fixed', 'auto') and 'op' in r:
-            k = (r['mesh'], r['noise'], r['op'], r['order'], r['steps'], r['kind'])
-            best[k] = min(best[k], (r['rms'], r['time_step']))
+from study_rows import MESHES, best_rows
+
+fixed_rows, auto_rows = best_rows('fixed'), best_rows('auto')
+meshes = MESHES
 top = total = 0
 for mesh, truth in (('sphere2_3k', 'sphere'), ('sphere2_13k', 'sphere'), ('torus_10k', 'torus:1:0.4'),
                     ('elephant_6k', 'mesh'), ('fandisk_13k', 'mesh')):
@@ -39,8 +31,8 @@ for mesh, truth in (('sphere2_3k', 'sphere'), ('sphere2_13k', 'sphere'), ('torus
             total += 1
             if risk.index(min(risk)) == len(risk) - 1:
                 top += 1
-                auto = best[(mesh, noise, op, order, steps, 'auto')]
-                fixed = best[(mesh, noise, op, order, steps, 'fixed')]
+                auto = auto_rows[(mesh, noise, op, order, steps)]
+                fixed = fixed_rows[(mesh, noise, op, order, steps)]
                 print('%s %s %s %d x%d: chosen %s, converged to %s, search minimizer %s; auto / oracle %.3f, '
                       'oracle time step %.4g' % (mesh, noise, op, order, steps, head[-1][2], head[-1][8],
                                                  head[-1][10], auto[0] / fixed[0], fixed[1]))

@@ -5,26 +5,17 @@
 # product: three first-order curvature steps at the committed study's best fixed step, each
 # restoration's change (FAIR_DBG of a fairing-denoise-tool built from switch-factor.diff).
 #   TOOL=BUILD2/bin/fairing-denoise-tool step_losses.py
-import json
 import os
 import subprocess
 
-here = os.path.dirname(os.path.abspath(__file__))
-cache = os.environ.get('FAIRING_CACHE', os.path.expanduser('~/.cache/filter_implicit_fairing'))
-meshes = os.path.join(cache, 'bench-meshes')
+from study_rows import MESHES, best_rows
+
+meshes = MESHES
 steps = 3
-best = {}
-with open(os.path.join(here, '../../denoise.jsonl')) as f:
-    for line in f:
-        r = json.loads(line)
-        if (r.get('method') == 'ours' and r.get('kind') == 'fixed' and r.get('op') == 'curvature'
-                and r.get('order') == 1 and r.get('steps') == steps):
-            k = (r['mesh'], r['noise'])
-            if k not in best or r['rms'] < best[k][0]:
-                best[k] = (r['rms'], r['time_step'])
+best = best_rows()
 for mesh, truth in (('torus_10k', 'torus:1:0.4'), ('sphere2_3k', 'sphere'), ('elephant_6k', 'mesh')):
     for noise in ('n0.1', 'n0.25', 'n0.5'):
-        time_step = best[(mesh, noise)][1]
+        time_step = best[(mesh, noise, 'curvature', 1, steps)][1]
         err = subprocess.run([os.environ['TOOL'], 'sweep', f'{meshes}/dn_{mesh}_{noise}.ply',
                               f'{meshes}/dn_{mesh}_clean.ply', truth, 'curvature', '1', str(steps), '1',
                               '--ts', str(time_step)], env=dict(os.environ, FAIR_DBG='1'),

@@ -8,30 +8,23 @@
 # FAIR_SWITCH_L2=1).
 #   TOOL=BUILD/bin/fairing-denoise-tool variant.py [NAME=VALUE ...]
 # Meshes: the study's cache ($FAIRING_CACHE/bench-meshes, made by bench/denoise.sh).
-import collections
 import json
 import math
 import os
 import subprocess
 import sys
 
-here = os.path.dirname(os.path.abspath(__file__))
+from study_rows import HERE, MESHES, best_rows
+
 env = dict(os.environ)
 for a in sys.argv[1:]:
     k, v = a.split('=')
     env[k] = v
-oracle = collections.defaultdict(lambda: float('inf'))
-with open(os.path.join(here, '../../denoise.jsonl')) as f:
-    for line in f:
-        r = json.loads(line)
-        if r.get('method') == 'ours' and r.get('kind') == 'fixed' and 'op' in r:
-            k = (r['mesh'], r['noise'], r['op'], r['order'], r['steps'])
-            oracle[k] = min(oracle[k], r['rms'])
-cache = os.environ.get('FAIRING_CACHE', os.path.expanduser('~/.cache/filter_implicit_fairing'))
-meshes = os.path.join(cache, 'bench-meshes')
+oracle = best_rows()
+meshes = MESHES
 tool = os.environ['TOOL']
 rows, logs = [], []
-with open(os.path.join(here, 'cases.txt')) as f:
+with open(os.path.join(HERE, 'cases.txt')) as f:
     for line in f:
         m, noise, op, order, steps = line.split()
         truth = 'sphere' if m.startswith('sphere') else 'torus:1:0.4' if m.startswith('torus') else 'mesh'
@@ -39,7 +32,7 @@ with open(os.path.join(here, 'cases.txt')) as f:
                               truth, op, order, steps, '1', '--auto', '--ts', '1'],
                              env=env, capture_output=True, text=True, check=True).stdout
         r = [json.loads(x) for x in out.splitlines() if '"auto"' in x][0]
-        q = r['rms'] / oracle[(m, noise, op, int(order), int(steps))]
+        q = r['rms'] / oracle[(m, noise, op, int(order), int(steps))][0]
         logs.append(math.log(q))
         rows.append('%s %s %s L%s x%s %.3f' % (m, noise, op, order, steps, q))
 print(' '.join(sys.argv[1:]) or 'as committed', 'geometric mean %.4f, worst %.3f, past 10 %%: %d of %d'
