@@ -690,8 +690,7 @@ void Run::choose_time_step() {
     // Each recomputed step is restored on its own (take_steps), and each decides offset or
     // scaling. Modelled so for first-order steps; for L^2 steps it moved the 3 k sphere's rows
     // both ways (1.06 -> 1.22 and 1.12 -> 1.06 of their best steps; auto-gap.md section 26).
-    if (options_.order == 1 && options_.op != Operator::Umbrella && !options_.freeze_operator)
-        problem.restorations = problem.steps;
+    if (options_.order == 1 && problem.pilot) problem.restorations = problem.steps;
     problem.residual_on_later_steps = options_.op == Operator::CurvatureFlow;
     problem.explicit_integration = options_.integration == Integration::Explicit;
     // Explicit: at most half the first step's stability bound. At the bound the highest mode

@@ -14,8 +14,9 @@ import os
 import subprocess
 import sys
 
-cache = os.environ.get('FAIRING_CACHE', os.path.expanduser('~/.cache/filter_implicit_fairing'))
-meshes = os.path.join(cache, 'bench-meshes')
+from study_rows import MESHES
+
+meshes = MESHES
 tool = os.environ['TOOL']
 out_dir = sys.argv[1]
 os.makedirs(out_dir, exist_ok=True)
