@@ -377,6 +377,15 @@ inline TriangleMesh gaussian_radial_noise(TriangleMesh m, double sigma, std::uin
     return m;
 }
 
+// Moves every vertex by a random vector with Gaussian coordinates of standard deviation sigma
+// (the study's noise "in all directions").
+inline TriangleMesh gaussian_isotropic_noise(TriangleMesh m, double sigma, std::uint64_t seed = 3) {
+    Rng rng(seed);
+    for (int i = 0; i < m.positions.rows(); ++i)
+        for (int k = 0; k < 3; ++k) m.positions(i, k) += sigma * rng.normal();
+    return m;
+}
+
 // Moves every vertex by a random vector with coordinates in [-amplitude, amplitude].
 inline TriangleMesh box_noise(TriangleMesh m, double amplitude, std::uint64_t seed = 5) {
     Rng rng(seed);
