@@ -1269,9 +1269,9 @@ Curves checkpoint(const Context& ctx, const Lanczos& u, const Lanczos& z, const 
     now.near = std::min(s.grid.size(), std::max(last.reach, now.first) + kNear);
     const std::size_t end = std::min(s.grid.size(), std::max(last.reach, now.first) + kFar);
     // Every point is evaluated afresh, also those that had converged: two checkpoints can agree
-    // while both are off. The 51 k-vertex sphere with a quarter edge of noise in all directions
+    // while both are off. The 51 k-face sphere with a quarter edge of noise in all directions
     // (two first-order curvature-flow steps) agreed within 2 % at time step 25 after 15 and 21
-    // Lanczos steps (RSS_n 1.009 and 1.028 N sigma^2) and fell to 0.953 by step 40. Kept at
+    // Lanczos steps (RSS_n 1.009 and 1.028 N sigma^2) and fell to 0.953 by 40 steps. Kept at
     // their first converged values (until session 27, to save the sketch's product), the
     // points there put the minimizer at 7.9 and the final grid's risk, evaluated afresh, fell to
     // its top edge (19.9, 1.215x the best fixed step's error); re-judged, they settle at 78
