@@ -368,7 +368,7 @@ TEST(AutoStrength, ConvergedPointsOfTheRiskAreJudgedAgainAtEveryCheckpoint) {
         return meshes::gaussian_isotropic_noise(clean, 0.25 * h, 70 + draw);
     };
     const Ratios r = automatic_against_best_on_two_density_sphere(
-        5, 2, noisy, automatic(Operator::CurvatureFlow, 1, 2), 4, 400);
+        5, 2, noisy, automatic(Operator::CurvatureFlow, 1, 2), 10, 250);
     EXPECT_LT(r.worst, 1.1);
 }
 
