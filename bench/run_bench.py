@@ -141,7 +141,7 @@ def ours_mlx(op_menu, time_step, order):
     enum = lambda n, k: ' enum_cardinality="%d"%s' % (n, "".join(' enum_val%d="%s"' % (i, v) for i, v in enumerate(k)))
     return (ours_so, op_menu, [
         ("timeStep", "RichFloat", repr(time_step), ""), ("stepSmoothNum", "RichInt", 1, ""),
-        ("order", "RichEnum", order - 1, enum(2, ["L (first order)", "L2 (second order)"])),
+        ("order", "RichEnum", order - 1, enum(4, ["L (first order)", "L2 (second order)", "L3 (third order)", "L4 (fourth order)"])),
         ("integration", "RichEnum", 0, enum(3, ["Implicit", "Explicit", "Explicit, normalized operator (section 5.5)"])),
         ("preserveVolume", "RichBool", "true", ""), ("openInvariant", "RichEnum", 0, enum(2, ["None", "Area"])),
         ("boundaryMode", "RichEnum", 0, enum(3, ["Fixed", "Smooth boundary curve", "Virtual vertex"])),

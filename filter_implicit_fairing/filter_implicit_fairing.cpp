@@ -159,7 +159,9 @@ void FilterImplicitFairing::initParameters(fairing_plugin::FilterId id, const Me
         tr("Number of implicit steps; each one applies the time step again.")));
     par.addParam(RichEnum(kOrder, d.order, labels(orderLabels()), tr("Operator order"),
         tr("L: diffusion/flow with the operator itself. L²: with the squared operator "
-           "(section 2.6), a much sharper low-pass filter: removes noise, keeps shape.")));
+           "(section 2.6), a much sharper low-pass filter: removes noise, keeps shape. "
+           "L³, L⁴: the higher powers of the paper's Figure 3a, closer still to a low-pass "
+           "filter (each step a first-order and a complex solve, or two complex ones).")));
     par.addParam(RichEnum(kIntegration, d.integration, labels(integrationLabels()),
         tr("Integration"),
         tr("Implicit (backward Euler) is stable for any time step. Explicit (forward Euler) is "

@@ -145,7 +145,7 @@ struct Filter {
     double lambda = 0;
     int steps = 1;
     bool explicit_steps = false;
-    bool squared = false;  // T is the first-order G1 and the filter's G = G1^2 (see Context)
+    int power = 1;  // > 1: T is the first-order G1 and the filter's G = G1^power (see Context)
 };
 
 // Three independent Lanczos processes on G (one per column), in the coordinates q = D^-1/2 v,
@@ -183,7 +183,8 @@ struct Context {
     // processes then run on G1: one product with K per step instead of two, and as many steps
     // as the filter's poles at +-i/sqrt(lambda) need instead of those of the pole of
     // (1 + lambda g)^-1 on the squared spectrum (umbrella L^2 on the 1.2 M-face bunny: 78
-    // Lanczos steps).
+    // Lanczos steps). The same for L^p, p = 3 or 4 (the paper's Figure 3a): G = G1^p, the
+    // filter's poles at the p-th roots of -1/lambda (lanczos_filter.h).
     bool squared = false;
     // With soft weights (D = M/w) the L^2 filter's G = W^1/2 G1^2 W^1/2 is no square; it is
     // modelled as G~^2, G~ = W^1/4 G1 W^1/4 (exact for uniform weights, and up to the commutator
@@ -194,8 +195,8 @@ struct Context {
     // unweighted choice exactly; weights varying along the mesh give the converged L^2
     // process's choice within 4 % on scans, but on the sphere and the torus, whose best steps
     // act on the smoothest modes where the commutator is not small, a 4-11x weaker one: such
-    // choices are redone on G itself (kWeightModelKeeps). Per row w^-1/4 (empty: no soft
-    // weights).
+    // choices are redone on G itself (kWeightModelKeeps). Per row w^-1/4 (L^p: G~ = W^1/(2p)
+    // G1 W^1/(2p), w^-1/(2p); empty: no soft weights).
     std::vector<double> weight_root;
     Positions scaled;  // scratch for the product with G~
 };
@@ -207,7 +208,7 @@ double d_of(const StrengthProblem& p, int i) {
 }
 
 Filter filter_at(const Context& ctx, double lambda) {
-    return Filter{lambda, ctx.p.steps, ctx.p.explicit_integration, ctx.squared};
+    return Filter{lambda, ctx.p.steps, ctx.p.explicit_integration, ctx.squared ? ctx.p.order : 1};
 }
 
 // product = unit * C current (with Context::weight_root: W^-1/4 C1 W^-1/4 current); returns
@@ -433,7 +434,7 @@ Eigen::VectorXd filtered(const Lanczos& l, int c, const Filter& f, double& kept)
     const std::vector<double>& b = l.beta[c];
     if (!f.explicit_steps) {
         const std::vector<double> sum =
-            implicit_steps_filter(a, b, k, f.lambda, f.steps, f.squared, &kept);
+            implicit_steps_filter(a, b, k, f.lambda, f.steps, f.power, &kept);
         return Eigen::Map<const Eigen::VectorXd>(sum.data(), k);
     }
     Eigen::VectorXd w = Eigen::VectorXd::Zero(k), sum = Eigen::VectorXd::Zero(k), next(k);
@@ -1277,7 +1278,7 @@ Curves checkpoint(const Context& ctx, const Lanczos& u, const Lanczos& z, const 
     // its top edge (19.9, 1.215x the best fixed step's error); re-judged, they settle at 78
     // Lanczos steps on 54 (1.019x; bench/results/issue11/auto-gap.md section 27).
     now.rss = sketch.rss(ctx, u, s.grid, now.first, end, &now.gain);
-    const bool slow = ctx.c.order == 2 && !ctx.p.explicit_integration;
+    const bool slow = ctx.c.order >= 2 && !ctx.p.explicit_integration;
     // Geometric from kConvergedSquaredSpectrum at kStrictSteps towards kConverged at kRelaxedSteps.
     const double past = std::max(0.0, std::log(static_cast<double>(steps) / kStrictSteps) /
                                           std::log(static_cast<double>(kRelaxedSteps) / kStrictSteps));
@@ -1524,7 +1525,7 @@ StrengthEstimate estimate_strength(const StrengthProblem& p) {
     q.pilot = usable;
     // L^2 steps of the curvature flow: the residual from the later steps' operator alone
     // (header, "Several steps").
-    const bool later = usable && p.residual_on_later_steps && p.order == 2 &&
+    const bool later = usable && p.residual_on_later_steps && p.order >= 2 &&
                        !p.explicit_integration && !p.weight;
     return risk_minimum(q, normals, e, true, nullptr, later ? p.op : nullptr);
 }
@@ -1578,7 +1579,7 @@ StrengthEstimate risk_minimum(const StrengthProblem& p, const Positions& normals
     ctx.c.free = *p.free;
     ctx.c.lambda_dt = p.length_unit;
     ctx.c.order = p.order;
-    ctx.squared = p.order == 2 && !p.explicit_integration;
+    ctx.squared = p.order >= 2 && !p.explicit_integration;
     ctx.data.assign(ctx.n, 0);
     double count = 0;  // data rows
     for (int i = 0; i < ctx.n; ++i) {
@@ -1597,14 +1598,15 @@ StrengthEstimate risk_minimum(const StrengthProblem& p, const Positions& normals
         double first = 0;
         for (int i = 0; i < ctx.n; ++i) {
             if (!(*p.free)[i]) continue;
-            ctx.weight_root[i] = std::pow(p.op->mass[i] / d_of(p, i), -0.25);
+            ctx.weight_root[i] = std::pow(p.op->mass[i] / d_of(p, i), -0.5 / p.order);
             if (first == 0) first = ctx.weight_root[i];
             uniform = uniform && std::abs(ctx.weight_root[i] - first) <= 1e-12 * first;
         }
     }
     if (ctx.squared) {
         ctx.c.order = 1;
-        ctx.c.lambda_dt = std::sqrt(p.length_unit);
+        ctx.c.lambda_dt = p.order == 2 ? std::sqrt(p.length_unit)
+                                       : std::pow(p.length_unit, 1.0 / p.order);
     }
     e.data_count = count;
 

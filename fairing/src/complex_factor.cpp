@@ -71,7 +71,11 @@ std::array<double, 9> combine_norms_and_products(bool l2, std::array<double, 9>&
 }  // namespace
 
 bool complex_factor_applies(const LinearSystem& system) {
-    if (system.order != 2) return false;
+    return system.order == 2 && powers_first_order(system);
+}
+
+bool powers_first_order(const LinearSystem& system) {
+    if (system.order < 2) return false;
     const SparseOperator& op = *system.op;
     for (int i = 0; i < op.size(); ++i)
         if (system.free[i] && !(system.diagonal[i] == op.mass[i] && op.mass[i] > 0)) return false;

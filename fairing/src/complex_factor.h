@@ -50,6 +50,10 @@ class Multigrid;
 
 // True when the L^2 system factors as above: order 2 and D = M on every free row.
 bool complex_factor_applies(const LinearSystem& system);
+// True when the system's C is the power of the first-order C1 = -K in M's metric on the free
+// rows, C = C1 (M^-1 C1)^(order-1): order 2 or more and D = M on every free row (the Lanczos
+// processes of frozen_steps.h and auto_strength.h then run on G1).
+bool powers_first_order(const LinearSystem& system);
 
 class ComplexFactorSolver {
 public:

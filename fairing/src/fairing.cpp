@@ -83,9 +83,9 @@ void validate(const TriangleMesh& mesh, const Constraints& constraints, const Op
                     number(*options.time_step) + ")");
     if (options.steps < 0)
         throw Error("the number of steps must be >= 0 (got " + std::to_string(options.steps) + ")");
-    if (options.order != 1 && options.order != 2)
-        throw Error("the operator order must be 1 (L) or 2 (L squared), got " +
-                    std::to_string(options.order));
+    if (options.order < 1 || options.order > 4)
+        throw Error("the operator order must be 1 (L), 2 (L squared), 3 or 4 (the higher powers "
+                    "of section 2.6), got " + std::to_string(options.order));
     if (!(std::isfinite(options.tolerance) && options.tolerance > 0))
         throw Error("the solver tolerance must be a finite number > 0 (got " +
                     number(options.tolerance) + ")");
@@ -129,8 +129,8 @@ void add_virtual_vertices(const HalfEdgeMesh& mesh, Positions& x, std::vector<Tr
 
 // Explicit stability bound from Gershgorin's theorem on L = M^-1 K: its eigenvalues lie in
 // [-mu, 0] with mu = max_i 2 sum_j |w_ij| / M_i, and forward Euler is stable while
-// lambda_dt mu <= 2 (order 1) or lambda_dt mu^2 <= 2 (order 2). For the umbrella mu = 2, which
-// gives the paper's lambda_dt < 1 (section 2.2).
+// lambda_dt mu^p <= 2 for order p (mu^p bounds the spectrum of (-L)^p). For the umbrella mu = 2,
+// which gives the paper's lambda_dt < 1 (section 2.2).
 double explicit_bound(const SparseOperator& op, const std::vector<char>& free, int order) {
     double mu = 0;
     for (int i = 0; i < op.size(); ++i) {
@@ -140,7 +140,7 @@ double explicit_bound(const SparseOperator& op, const std::vector<char>& free, i
         mu = std::max(mu, 2 * sum / op.mass[i]);
     }
     if (mu == 0) return INFINITY;
-    return order == 1 ? 2 / mu : 2 / (mu * mu);
+    return order == 1 ? 2 / mu : order == 2 ? 2 / (mu * mu) : 2 / std::pow(mu, order);
 }
 
 // One run of fair() on `mesh`, the caller's mesh or its renumbering by `order` (vertex_order.h:
@@ -262,16 +262,17 @@ void Run::explicit_step(const SparseOperator& op, const std::vector<char>& free,
             result_.explicit_unstable = true;
         }
     }
+    // X' = X - lambda_dt (-L P)^(p-1) (-L) X (order 2: X - lambda_dt L P L X), L = 0 at fixed
+    // vertices.
     Positions lx, llx;
     op.apply_l(x_, lx);
-    double sign = 1;
-    if (options_.order == 2) {  // X' = (I - lambda_dt L P L) X, L = 0 at fixed vertices
+    for (int power = 2; power <= options_.order; ++power) {
         for (int i = 0; i < n; ++i)
             if (!free[i]) lx.row(i).setZero();
         op.apply_l(lx, llx);
         lx.swap(llx);
-        sign = -1;
     }
+    const double sign = options_.order % 2 ? 1 : -1;
     for (int i = 0; i < n; ++i)
         if (free[i]) x_.row(i) += sign * lambda_dt * weight(i) * lx.row(i);
 }
@@ -404,7 +405,7 @@ bool Run::take_frozen_steps(double lambda_dt, int steps) {
     if (!problem.rescaled.empty() && steps > kMaxRescaledSteps) return false;
     const LinearSystem system = system_for(surface_, free, lambda_dt);
     const bool first_order_unscaled = options_.order == 1 && problem.rescaled.empty();
-    if (!first_order_unscaled && !detail::complex_factor_applies(system)) return false;
+    if (!first_order_unscaled && !detail::powers_first_order(system)) return false;
     problem.system = &system;
     problem.steps = steps;
     problem.tolerance = options_.tolerance;

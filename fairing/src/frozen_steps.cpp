@@ -32,10 +32,10 @@ struct Tridiagonal {
 // |u| phi(T) e1: the coefficients of the Lanczos vectors in x_0 - x_s (frozen_steps.h,
 // lanczos_filter.h). With `partial`, also those of x_0 - x_m for m = 1..s-1.
 std::vector<double> coefficients(const Tridiagonal& t, double beta0, double lambda, int steps,
-                                 bool squared, std::vector<std::vector<double>>* partial) {
+                                 int power, std::vector<std::vector<double>>* partial) {
     const int k = static_cast<int>(t.a.size());
     const std::size_t first = partial ? partial->size() : 0;
-    std::vector<double> sum = implicit_steps_filter(t.a, t.b, k, lambda, steps, squared, nullptr,
+    std::vector<double> sum = implicit_steps_filter(t.a, t.b, k, lambda, steps, power, nullptr,
                                                     partial);
     for (double& v : sum) v *= beta0;
     if (partial)
@@ -265,7 +265,8 @@ FirstPass first_pass(const FrozenProblem& p, Lanczos& lanczos, const Positions& 
             if (out.t[c].a.empty()) continue;
             Tridiagonal t = out.t[c];
             t.b.resize(t.a.size() - 1);
-            const std::vector<double> y = coefficients(t, out.beta0[c], lambda, p.steps, squared, nullptr);
+            const std::vector<double> y = coefficients(t, out.beta0[c], lambda, p.steps,
+                                                      squared ? p.system->order : 1, nullptr);
             const double error = distance(y, last[c]);
             const double goal = kSafety * p.tolerance * std::max(scale[c], norm(y));
             if (first_error[c] == 0) first_error[c] = error;
@@ -409,7 +410,7 @@ void second_pass(const FrozenProblem& p, const FirstPass& first, Accumulation& a
 
 FrozenOutcome take_frozen_steps(const FrozenProblem& p, Positions& x) {
     FrozenOutcome outcome;
-    const bool squared = complex_factor_applies(*p.system);
+    const bool squared = powers_first_order(*p.system);
     FirstPass first;
     {
         Lanczos lanczos(*p.system, squared);  // its vectors go before the second pass's
@@ -427,7 +428,8 @@ FrozenOutcome take_frozen_steps(const FrozenProblem& p, Positions& x) {
     for (int c = 0; c < 3; ++c) {
         Tridiagonal t = first.t[c];
         if (!t.a.empty()) t.b.resize(t.a.size() - 1);
-        final[c] = coefficients(t, first.beta0[c], p.system->lambda_dt, p.steps, squared,
+        final[c] = coefficients(t, first.beta0[c], p.system->lambda_dt, p.steps,
+                                squared ? p.system->order : 1,
                                 kept_steps > 0 ? &partial[c] : nullptr);
         partial[c].resize(kept_steps, std::vector<double>());
         acc.final[c] = &final[c];

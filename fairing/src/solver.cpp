@@ -5,6 +5,7 @@
 #include "complex_factor.h"
 #include "kernels.h"
 #include "multigrid.h"
+#include "power_solve.h"
 
 #include <algorithm>
 #include <array>
@@ -66,22 +67,25 @@ Column3 LinearSystem::apply_dot(const Positions& x, Positions& y, Positions& scr
     const char* f = free.data();
     double* ys = y.data();
     const double lambda = lambda_dt;
-    // Row i of A x: d_i x_i + sign lambda (K v)_i, v = x (order 1, sign -1) or P M^-1 K x.
-    // Hard constraints impose L(x_i) = 0 (section 2.7), so L^2 = L P L with P zeroing the fixed
-    // rows; K P M^-1 K stays symmetric positive semi-definite.
-    const double sign = order == 1 ? -1.0 : 1.0;
+    // Row i of A x: d_i x_i + sign lambda (K v)_i, v = (P M^-1 K)^(order-1) x, sign = (-1)^order
+    // (order 1: -lambda K x; order 2: lambda K P M^-1 K x). Hard constraints impose L(x_i) = 0
+    // (section 2.7), so L^p = L P L P ... L with P zeroing the fixed rows; the operator
+    // (-K) (M^-1 P (-K))^(order-1) stays symmetric positive semi-definite.
+    const double sign = order % 2 ? -1.0 : 1.0;
     const Positions* v = &x;
-    if (order == 2) {
-        scratch.resize(n, 3);
-        double* ss = scratch.data();
+    Positions second;  // orders 3 and 4 alternate between scratch and this
+    for (int power = 1; power < order; ++power) {
+        Positions& out = power % 2 ? scratch : second;
+        out.resize(n, 3);
+        double* ss = out.data();
         const double* m = op->mass.data();
-        detail::for_each_k_row(*op, x, [=](int i, double s0, double s1, double s2) {
+        detail::for_each_k_row(*op, *v, [=](int i, double s0, double s1, double s2) {
             const double inverse = f[i] && m[i] > 0 ? 1.0 / m[i] : 0.0;
             ss[3 * i] = s0 * inverse;
             ss[3 * i + 1] = s1 * inverse;
             ss[3 * i + 2] = s2 * inverse;
         });
-        v = &scratch;
+        v = &out;
     }
     const double scale = sign * lambda;
     return detail::sum_over_k_rows(*op, *v, [=](int i, double s0, double s1, double s2, double* a) {
@@ -97,6 +101,13 @@ std::vector<double> LinearSystem::jacobi_diagonal() const {
         double extra = 0;
         if (order == 1) {
             extra = -op->diagonal(i);
+        } else if (order > 2) {
+            // Orders 3 and 4: the diagonal of (-K) (M^-1 P (-K))^(order-1) would need the wider
+            // rings; its first-order estimate |K_ii|^p / M_i^(p-1) is a positive diagonal like it
+            // (Jacobi needs no more; these solves take it only with soft weights).
+            const double kii = std::abs(op->diagonal(i));
+            const double mi = op->mass[i] > 0 ? op->mass[i] : 1.0;
+            extra = kii * std::pow(kii / mi, order - 1);
         } else {
             // (K P M^-1 K)_ii = sum over free j of K_ij^2 / M_j, j = i included.
             const double kii = op->diagonal(i);
@@ -741,7 +752,7 @@ SolveStats solve_real(const LinearSystem& system, Positions& x, const Positions&
     const int n = system.op->size();
     // scratch holds M^-1 K p between the two products of an L^2 system (and the inner solves'
     // first solution); first-order solves never touch it.
-    Positions r(n, 3), p(n, 3), q(n, 3), scratch(system.order == 2 ? n : 0, 3);
+    Positions r(n, 3), p(n, 3), q(n, 3), scratch(system.order >= 2 ? n : 0, 3);
     SolveStats stats;
     std::unique_ptr<FactoredPreconditioner> factored;
     std::unique_ptr<detail::Multigrid> multigrid;
@@ -832,6 +843,10 @@ SolveStats solve(const LinearSystem& system, Positions& x, const SolveSettings& 
     for (int c = 0; c < 3; ++c) goal[c] = scale[c] > 0 ? settings.tolerance * scale[c] : 0.0;
     const bool complex = settings.preconditioner == Preconditioner::Automatic ||
                          settings.preconditioner == Preconditioner::Multigrid;
+    // L^3 and L^4 without soft weights: by partial fractions (power_solve.h); with them, or when
+    // Jacobi is asked for, Jacobi CG on the L^p system itself.
+    if (complex && detail::power_solve_applies(system))
+        return detail::solve_power(system, x, b, goal, settings);
     if (!complex || !detail::complex_factor_applies(system))
         return solve_real(system, x, b, scale, goal, settings);
     if (settings.preconditioner != Preconditioner::Automatic)

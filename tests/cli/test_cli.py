@@ -437,7 +437,7 @@ def case_errors():
     expect_failure([work("missing.ply"), out], out, "missing.ply")
     expect_failure([good, out, "--no-such-option"], out, "--no-such-option")
     expect_failure([good, out, "--operator", "laplace"], out, "laplace")
-    expect_failure([good, out, "--order", "3"], out, "order")
+    expect_failure([good, out, "--order", "5"], out, "order")
     expect_failure([good, out, "--threads", "-1"], out, "threads")
     expect_failure([good, out, "--time-step", "-1"], out, "time step")
     expect_failure([good, out, "--invert-weights"], out, "--weights-from-quality")

@@ -589,6 +589,7 @@ inline Positions to_positions(const Eigen::MatrixXd& m) {
 // Dense reference for one implicit step as the headers define it (fairing.h, solver.h):
 //   order 1: (D - lambda_dt K) X' = D X_old,
 //   order 2: (D + lambda_dt K P M^-1 K) X' = D X_old,
+//   order p: (D + lambda_dt (-K) (P M^-1 (-K))^(p-1)) X' = D X_old (section 2.6, Figure 3a),
 // D_i = M_i / w_i (w = 1 when `weights` is empty). Rows with free[i] == 0 (or w_i == 0) are hard
 // constraints: they keep X_old, L(x_i) = 0 there (section 2.7: P zeroes those rows, so
 // L^2 = L P L) and their terms move to the right-hand side. Solved with a dense LDLT.
@@ -608,15 +609,13 @@ inline Positions dense_implicit_step(const fairing::SparseOperator& op, const Po
             else D(i) = M(i) / weights[i];
         }
     }
-    Eigen::MatrixXd A;
-    if (order == 1) {
-        A = Eigen::MatrixXd(D.asDiagonal()) - lambda_dt * K;
-    } else {
-        Eigen::VectorXd inv = Eigen::VectorXd::Zero(n);  // P M^-1
-        for (int i = 0; i < n; ++i)
-            if (M(i) > 0 && is_free[i]) inv(i) = 1.0 / M(i);
-        A = Eigen::MatrixXd(D.asDiagonal()) + lambda_dt * K * inv.asDiagonal() * K;
-    }
+    // A = D + lambda_dt C, C = (-K) (P M^-1 (-K))^(order-1) (order 2: K P M^-1 K).
+    Eigen::VectorXd inv = Eigen::VectorXd::Zero(n);  // P M^-1
+    for (int i = 0; i < n; ++i)
+        if (M(i) > 0 && is_free[i]) inv(i) = 1.0 / M(i);
+    Eigen::MatrixXd C = -K;
+    for (int p = 2; p <= order; ++p) C = C * inv.asDiagonal() * (-K);
+    const Eigen::MatrixXd A = Eigen::MatrixXd(D.asDiagonal()) + lambda_dt * C;
     std::vector<int> f;
     for (int i = 0; i < n; ++i)
         if (is_free[i]) f.push_back(i);

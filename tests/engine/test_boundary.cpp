@@ -62,7 +62,7 @@ TEST(Boundary, FixedKeepsLoopsBitIdentical) {
             for (int v : t) used[v] = 1;
         const int referenced = static_cast<int>(std::count(used.begin(), used.end(), 1));
         for (Operator op : kOperators)
-            for (int order : {1, 2}) {
+            for (int order : {1, 2, 3, 4}) {
                 SCOPED_TRACE(testing::Message() << fairing::to_string(op) << " order " << order);
                 const fairing::Result r = fairing::fair(m, {}, options(op, order, BoundaryMode::Fixed));
                 EXPECT_EQ(r.boundary_loops, static_cast<int>(loops.size()));
@@ -86,7 +86,7 @@ TEST(Boundary, SmoothCurveShortensNoisyLoops) {
         const TriangleMesh& m = c.mesh;
         const auto loops = meshes::boundary_loops(m.triangles);
         for (Operator op : kOperators)
-            for (int order : {1, 2}) {
+            for (int order : {1, 2, 3, 4}) {
                 SCOPED_TRACE(testing::Message() << fairing::to_string(op) << " order " << order
                                                 << " loops " << loops.size());
                 Options o = options(op, order, BoundaryMode::SmoothCurve, 3);
@@ -149,7 +149,7 @@ TEST(Boundary, VirtualVertexIsNeverWrittenBack) {
     for (const TriangleMesh& m : {noisy_sheet(), noisy_annulus()}) {
         const auto loops = meshes::boundary_loops(m.triangles);
         for (Operator op : kOperators)
-            for (int order : {1, 2}) {
+            for (int order : {1, 2, 3, 4}) {
                 SCOPED_TRACE(testing::Message() << fairing::to_string(op) << " order " << order);
                 const fairing::Result r =
                     fairing::fair(m, {}, options(op, order, BoundaryMode::VirtualVertex));

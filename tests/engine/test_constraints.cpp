@@ -57,7 +57,7 @@ TEST(Constraints, FixedVerticesAreBitIdentical) {
     for (char f : c.fixed) nfixed += f ? 1 : 0;
     const double v0 = meshes::volume(m.positions, m.triangles);
     for (Operator op : kOperators)
-        for (int order : {1, 2})
+        for (int order : {1, 2, 3, 4})
             for (bool volume : {false, true}) {
                 SCOPED_TRACE(testing::Message() << fairing::to_string(op) << " order " << order
                                                 << " preserve_volume " << volume);
@@ -107,7 +107,7 @@ TEST(Constraints, WeightZeroIsFixed) {
     for (int i = 0; i < n; ++i)
         if (hard.fixed[i]) soft.weights[i] = 0.0;
     for (Operator op : kOperators)
-        for (int order : {1, 2})
+        for (int order : {1, 2, 3, 4})
             for (bool volume : {false, true}) {
                 SCOPED_TRACE(testing::Message() << fairing::to_string(op) << " order " << order
                                                 << " preserve_volume " << volume);
@@ -142,7 +142,7 @@ TEST(Constraints, SmallerWeightsMoveLess) {
     Constraints quarter;
     quarter.weights.assign(m.positions.rows(), 0.25);
     for (Operator op : kOperators)
-        for (int order : {1, 2})
+        for (int order : {1, 2, 3, 4})
             for (bool volume : {false, true}) {
                 SCOPED_TRACE(testing::Message() << fairing::to_string(op) << " order " << order
                                                 << " preserve_volume " << volume);
@@ -171,7 +171,7 @@ TEST(Constraints, VaryingWeightsSolveTheWeightedSystem) {
     for (int i = 0; i < n; ++i) c.weights.push_back(0.05 + 0.95 * rng.uniform());
     const fairing::HalfEdgeMesh he = fairing::HalfEdgeMesh::build(m.positions, m.triangles);
     for (Operator op : kOperators)
-        for (int order : {1, 2}) {
+        for (int order : {1, 2, 3, 4}) {
             SCOPED_TRACE(testing::Message() << fairing::to_string(op) << " order " << order);
             Options o = options(op, order, false);
             o.steps = 1;

@@ -105,7 +105,7 @@ TEST(FrozenSteps, EqualTheStepsOneByOne) {
     const TriangleMesh m = lumpy_sphere();
     const HalfEdgeMesh he = HalfEdgeMesh::build(m.positions, m.triangles);
     for (Operator op : kOperators)
-        for (int order : {1, 2}) {
+        for (int order : {1, 2, 3, 4}) {
             SCOPED_TRACE(testing::Message() << fairing::to_string(op) << " order " << order);
             const Options o = frozen(op, order, order == 1 ? 2.0 : 4.0, 4);
             const fairing::Result r = fairing::fair(m, {}, o);
@@ -169,7 +169,7 @@ TEST(FrozenSteps, FixedBoundaryOfAnOpenMesh) {
     std::vector<char> free(m.positions.rows(), 1);
     for (int v = 0; v < he.num_vertices(); ++v) free[v] = he.is_boundary_vertex(v) ? 0 : 1;
     for (Operator op : kOperators)
-        for (int order : {1, 2}) {
+        for (int order : {1, 2, 3, 4}) {
             SCOPED_TRACE(testing::Message() << fairing::to_string(op) << " order " << order);
             Options o = frozen(op, order, 3.0, 3);
             o.preserve_volume = true;  // nothing to restore on an open component (None)
@@ -212,7 +212,7 @@ TEST(FrozenSteps, SoftWeights) {
     fairing::Constraints constraints;
     for (int i = 0; i < m.positions.rows(); ++i)
         constraints.weights.push_back(i % 7 == 0 ? 0.0 : 0.2 + 0.8 * ((i * 37) % 11) / 10.0);
-    for (int order : {1, 2}) {
+    for (int order : {1, 2, 3, 4}) {
         SCOPED_TRACE(testing::Message() << "order " << order);
         const Options o = frozen(Operator::CurvatureFlow, order, 2.0, 3);
         const fairing::Result r = fairing::fair(m, constraints, o);
@@ -235,7 +235,7 @@ TEST(FrozenSteps, GeneralProcessWithSoftWeights) {
     for (int i = 0; i < x0.rows(); ++i)
         weights.push_back(i % 7 == 0 ? 0.0 : 0.2 + 0.8 * ((i * 37) % 11) / 10.0);
     for (Operator op : {Operator::Umbrella, Operator::CurvatureFlow})
-        for (int order : {1, 2})
+        for (int order : {1, 2, 3, 4})
             for (bool soft : {false, true}) {
                 SCOPED_TRACE(testing::Message() << fairing::to_string(op) << " order " << order
                                                 << " soft " << soft);

@@ -12,6 +12,9 @@
 //     implicit order 2: (I + ldt L^2) X' = X        -> X' = X / (1 + ldt mu^2)
 //     explicit order 1: X' = (I + ldt L) X          -> X' = (1 - ldt mu) X
 //     explicit order 2: X' = (I - ldt L^2) X        -> X' = (1 - ldt mu^2) X
+// and for the higher powers of section 2.6 (Figure 3a), p = 3, 4:
+//     implicit: (I + ldt (-L)^p) X' = X             -> X' = X / (1 + ldt mu^p)
+//     explicit: X' = (I - ldt (-L)^p) X             -> X' = (1 - ldt mu^p) X
 // The positions are the torus embedding (itself a sum of the modes (1,0), (1,+-1), (0,1)) plus a
 // test mode (a, b) of amplitude s, so the expected result is a sum of scaled modes.
 #include "meshes.h"
@@ -62,7 +65,8 @@ Positions modes(int a, int b, const std::function<double(int, int)>& g) {
     return p;
 }
 
-Options umbrella_options(int order, double time_step, Integration integration, int steps = 1) {
+Options umbrella_options(int order, double time_step, Integration integration, int steps = 1,
+                         double tolerance = 1e-14) {
     Options o;
     o.op = Operator::Umbrella;
     o.integration = integration;
@@ -70,7 +74,7 @@ Options umbrella_options(int order, double time_step, Integration integration, i
     o.time_step = time_step;
     o.steps = steps;
     o.preserve_volume = false;
-    o.tolerance = 1e-14;
+    o.tolerance = tolerance;
     o.max_iterations = 10000;
     return o;
 }
@@ -78,7 +82,7 @@ Options umbrella_options(int order, double time_step, Integration integration, i
 const int kModes[][2] = {{1, 0}, {0, 1}, {1, 1}, {2, -1}, {3, 5}, {5, -3}, {8, 8}, {8, 0}, {7, 2}};
 
 void check(int order, Integration integration, double ldt, int steps,
-           const std::function<double(double)>& gain_of_mu) {
+           const std::function<double(double)>& gain_of_mu, double tolerance = 1e-14) {
     TriangleMesh m = meshes::torus_grid(N, N, R, r);
     for (const auto& ab : kModes) {
         SCOPED_TRACE(testing::Message() << "mode (" << ab[0] << ", " << ab[1] << "), ldt = " << ldt
@@ -87,7 +91,7 @@ void check(int order, Integration integration, double ldt, int steps,
         auto gain = [&](int a, int b) { return std::pow(gain_of_mu(mu(a, b)), steps); };
         m.positions = modes(ab[0], ab[1], unit);
         const fairing::Result res =
-            fairing::fair(m, {}, umbrella_options(order, ldt, integration, steps));
+            fairing::fair(m, {}, umbrella_options(order, ldt, integration, steps, tolerance));
         EXPECT_DOUBLE_EQ(res.lambda_dt, ldt);  // umbrella: dimensionless time step
         const Positions expected = modes(ab[0], ab[1], gain);
         ASSERT_EQ(res.positions.rows(), expected.rows());
@@ -137,4 +141,32 @@ TEST(TransferFunction, ExplicitOrder1) {
 TEST(TransferFunction, ExplicitOrder2) {
     for (double ldt : {0.05, 0.2})
         check(2, Integration::Explicit, ldt, 1, [&](double m) { return 1.0 - ldt * m * m; });
+}
+
+// One step goes through the partial-fraction solve (src/power_solve.h: a first-order and a
+// complex solve for L^3, two complex ones for L^4); several steps on the umbrella's frozen
+// operator through the Lanczos process on the first-order operator (src/frozen_steps.h).
+TEST(TransferFunction, ImplicitOrders3And4) {
+    // The L^p residual b - A x cannot fall below rounding times |A| |x| ~ 1e-16 ldt mu^p: the
+    // stiffest systems are asked for 1e-12 (the result is still checked to 1e-9).
+    for (int order : {3, 4})
+        for (double ldt : {0.1, 1.0, 10.0, 1000.0})
+            check(
+                order, Integration::Implicit, ldt, 1,
+                [&](double m) { return 1.0 / (1.0 + ldt * std::pow(m, order)); },
+                ldt > 10 ? 1e-12 : 1e-14);
+}
+
+TEST(TransferFunction, ImplicitOrders3And4SeveralStepsCompose) {
+    for (int order : {3, 4})
+        check(order, Integration::Implicit, 5.0, 3,
+              [&](double m) { return 1.0 / (1.0 + 5.0 * std::pow(m, order)); });
+}
+
+TEST(TransferFunction, ExplicitOrders3And4) {
+    // Stable while ldt mu^p < 2, mu <= 3/2.
+    for (int order : {3, 4})
+        for (double ldt : {0.05, 0.3})
+            check(order, Integration::Explicit, ldt, 1,
+                  [&](double m) { return 1.0 - ldt * std::pow(m, order); });
 }

@@ -29,7 +29,7 @@ FILTERS = {
     "curvature_flow": "Implicit Fairing: Curvature Flow",
 }
 
-ORDER = ["L (first order)", "L2 (second order)"]
+ORDER = ["L (first order)", "L2 (second order)", "L3 (third order)", "L4 (fourth order)"]
 # The labels of version 0.1.0, which .mlx scripts saved then carry (MeshLab reads the index)
 OLD_ORDER = ["L (first order)", "L\u00b2 (second order, recommended)"]
 # name, type, default, enum values

@@ -133,7 +133,8 @@ for l in lines:
     if l.startswith("labels "):
         _, name, rest = l.split(" ", 2)
         labels[name] = rest.split("|")
-want = {"order": ["L (first order)", "L2 (second order)"],
+want = {"order": ["L (first order)", "L2 (second order)", "L3 (third order)",
+                  "L4 (fourth order)"],
         "integration": ["Implicit", "Explicit", "Explicit, normalized operator (section 5.5)"],
         "openinvariant": ["None", "Area"],
         "boundarymode": ["Fixed", "Smooth boundary curve", "Virtual vertex"]}

@@ -123,10 +123,11 @@ void addFilterParameters(CLI::App& app, CommandLine& cl, const Values& d)
                " (scale-dependent)")
         ->type_name("N");
     app.add_option("--order", cl.order,
-                   "[order] 1: diffusion with L; 2: with L^2 (section 2.6, recommended). "
-                   "Default: " + std::to_string(d.order + 1))
-        ->check(CLI::IsMember({1, 2}))
-        ->type_name("1|2");
+                   "[order] 1: diffusion with L; 2: with L^2 (section 2.6, recommended); 3, 4: "
+                   "with L^3, L^4 (Figure 3a: closer to a low-pass filter). Default: " +
+                       std::to_string(d.order + 1))
+        ->check(CLI::IsMember({1, 2, 3, 4}))
+        ->type_name("1|2|3|4");
     app.add_flag("--explicit", cl.explicitIntegration,
                  "[integration=Explicit] Forward Euler (eq. 8) instead of the implicit backward "
                  "Euler (eq. 9); stable only for small time steps (a warning says when not). "

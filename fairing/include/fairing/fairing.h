@@ -12,7 +12,8 @@
 // - Every operator is L = M^-1 K with M diagonal positive and K symmetric, zero row sums,
 //   negative semi-definite. Implicit steps solve the symmetric positive definite system
 //   (M/w - lambda_dt K) X' = (M/w) X (eq. 9 multiplied by M; w = soft-constraint weights), or
-//   for the second order (M/w + lambda_dt K M^-1 K) X' = (M/w) X (section 2.6).
+//   for the second order (M/w + lambda_dt K M^-1 K) X' = (M/w) X (section 2.6), and for the
+//   order p (M/w + lambda_dt (-K) (M^-1 (-K))^(p-1)) X' = (M/w) X.
 // - The time step given by the user is dimensionless. For the scale-dependent umbrella and the
 //   curvature flow (L in 1/length^2, L^2 in 1/length^4) the absolute lambda_dt is
 //   time_step * (mean edge length)^(2 order), so the same settings work whatever the mesh's
@@ -117,7 +118,10 @@ struct Options {
     Operator op = Operator::CurvatureFlow;
     Integration integration = Integration::Implicit;
     // 1: diffusion with L (eq. 6). 2: with L^2, (I + lambda_dt L^2) X' = X (section 2.6), the
-    // paper's recommendation and the better denoiser.
+    // paper's recommendation and the better denoiser. 3, 4: (I + lambda_dt (-L)^p) X' = X, the
+    // higher powers of Figure 3a, closer still to a low-pass filter; solved by partial fractions
+    // (a first-order and a complex solve for L^3, two complex ones for L^4) without soft weights,
+    // by Jacobi CG on the L^p system with them (slow for strong steps).
     int order = 2;
     // Dimensionless; see the conventions above. Must be finite and >= 0. Empty (the default):
     // chosen from the mesh (automatic strength, see the conventions above).

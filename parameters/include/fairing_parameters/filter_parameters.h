@@ -35,7 +35,8 @@ constexpr const char* kAcceptUnconverged = "acceptUnconverged";
 // second order was labelled "L\xc2\xb2 (second order, recommended)" until 0.1.0, and scripts
 // saved then still run.
 inline const std::vector<std::string>& orderLabels() {
-    static const std::vector<std::string> v = {"L (first order)", "L2 (second order)"};
+    static const std::vector<std::string> v = {"L (first order)", "L2 (second order)",
+                                               "L3 (third order)", "L4 (fourth order)"};
     return v;
 }
 inline const std::vector<std::string>& integrationLabels() {
