@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <string>
 #include <vector>
 
 #ifdef _OPENMP
@@ -19,6 +21,15 @@
 
 namespace fairing {
 namespace detail {
+
+// The solvers' guard: a value of the iteration that stopped being finite ends the solve.
+inline void check_finite(double v, int iteration) {
+    if (!std::isfinite(v))
+        throw Error("the linear solve produced a non-finite value at iteration " +
+                    std::to_string(iteration) +
+                    "; the input is too degenerate for this operator (try the umbrella "
+                    "operator, or repair the mesh first)");
+}
 
 // Below this many rows a second thread costs more than it brings (starting a team, and with
 // OpenMP's default active wait, idle threads spinning against the host's own threads).

@@ -2,6 +2,7 @@
 // SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 #include "power_solve.h"
 
+#include "complex_factor.h"
 #include "kernels.h"
 
 #include <cmath>
@@ -20,14 +21,6 @@ using ComplexPositions = Eigen::Matrix<Complex, Eigen::Dynamic, 3, Eigen::RowMaj
 // Rounds of refinement at most: the parts are solved to the tolerance itself, and a round cuts the
 // L^p residual by about tolerance (c g)^(p-1) (header), so two or three suffice.
 constexpr int kMaxRounds = 6;
-
-void check_finite(double v, int iteration) {
-    if (!std::isfinite(v))
-        throw Error("the linear solve produced a non-finite value at iteration " +
-                    std::to_string(iteration) +
-                    "; the input is too degenerate for this operator (try the umbrella "
-                    "operator, or repair the mesh first)");
-}
 
 bool any(const std::array<bool, 3>& a) { return a[0] || a[1] || a[2]; }
 
@@ -115,11 +108,7 @@ int complex_part(const LinearSystem& system, Complex sigma, const Positions& r, 
 }  // namespace
 
 bool power_solve_applies(const LinearSystem& system) {
-    if (system.order < 3) return false;
-    const SparseOperator& op = *system.op;
-    for (int i = 0; i < op.size(); ++i)
-        if (system.free[i] && !(system.diagonal[i] == op.mass[i] && op.mass[i] > 0)) return false;
-    return true;
+    return system.order >= 3 && powers_first_order(system);
 }
 
 SolveStats solve_power(const LinearSystem& system, Positions& x, const Positions& b,

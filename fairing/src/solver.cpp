@@ -140,13 +140,7 @@ constexpr int kInnerCap = 64;
 // roughly 2 x kJacobiTrial Jacobi iterations Factored is the cheaper one.
 constexpr int kJacobiTrial = 40;
 
-void check_finite(double v, int iteration) {
-    if (!std::isfinite(v))
-        throw Error("the linear solve produced a non-finite value at iteration " +
-                    std::to_string(iteration) +
-                    "; the input is too degenerate for this operator (try the umbrella "
-                    "operator, or repair the mesh first)");
-}
+using detail::check_finite;
 
 bool any(const std::array<bool, 3>& active) { return active[0] || active[1] || active[2]; }
 
