@@ -6,12 +6,12 @@
 // fairing::Error is a fine outcome, but then the vcg mesh must be bit-identical.
 //
 // Byte format (read front to back; missing bytes read as 0, counts shrink to the bytes there):
-//   b0  op = b0 % 3, order = 1 + bit2, explicit = bit3 & bit4, normalized = explicit & bit5,
-//       preserve_volume = !bit6, accept_unconverged = bit7
+//   b0  op = b0 % 3, order = 1 + bit2 (+ 2 with b2's bit7), explicit = bit3 & bit4,
+//       normalized = explicit & bit5, preserve_volume = !bit6, accept_unconverged = bit7
 //   b1  boundary = b1 % 3, open invariant area = bit2, freeze = bit3, only selected = bit4,
 //       quality weights = bit5, invert quality = bit6, raw float coordinates = bit7
 //   b2  time step = kTimeSteps[b2 & 7], steps = 1 + bit3, tolerance = kTolerances[(b2>>4)&3],
-//       L-infinity norm = bit6
+//       L-infinity norm = bit6, order + 2 (L^3, L^4) = bit7
 //   b3  max_iterations = 1 + b3 % 64
 //   u16 vertex count (<= 2000), u16 face count (<= 4000), little endian
 //   per vertex: 3 int8 / 8 (lattice) or 3 raw float32 bits (NaN, Inf, huge, denormal), then a
@@ -90,7 +90,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::uint8_t b0 = in.u8(), b1 = in.u8(), b2 = in.u8(), b3 = in.u8();
     fairing::Options o;
     o.op = static_cast<fairing::Operator>(b0 % 3);
-    o.order = 1 + ((b0 >> 2) & 1);
+    o.order = 1 + ((b0 >> 2) & 1) + 2 * ((b2 >> 7) & 1);
     const bool explicit_steps = ((b0 >> 3) & 1) && ((b0 >> 4) & 1);
     o.integration = explicit_steps ? fairing::Integration::Explicit : fairing::Integration::Implicit;
     o.normalized = explicit_steps && ((b0 >> 5) & 1);

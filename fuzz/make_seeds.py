@@ -39,6 +39,8 @@ def main(d):
     tet_f = [(0, 2, 1), (0, 1, 3), (1, 2, 3), (2, 0, 3)]
     seeds = {
         "octahedron_curvature_l2": mesh(0x06, 0x00, 0x05, 40, octa_v, octa_f),
+        "octahedron_curvature_l3": mesh(0x02, 0x00, 0x85, 40, octa_v, octa_f),
+        "grid_umbrella_l4_selected": mesh(0x04, 0x10, 0x83, 30, grid_v, grid_f),
         "octahedron_umbrella_explicit": mesh(0x18, 0x00, 0x02, 10, octa_v, octa_f),
         "grid_smooth_boundary_area": mesh(0x01, 0x05, 0x03, 30, grid_v, grid_f),
         "grid_virtual_vertex": mesh(0x02, 0x02, 0x04, 30, grid_v, grid_f),
