@@ -16,7 +16,6 @@ namespace {
 
 using Column3 = std::array<double, 3>;
 using Complex = std::complex<double>;
-using ComplexPositions = Eigen::Matrix<Complex, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
 // Rounds of refinement at most: the parts are solved to the tolerance itself, and a round cuts the
 // L^p residual by about tolerance (c g)^(p-1) (header), so two or three suffice.
@@ -39,69 +38,129 @@ Column3 norms(const Positions& v, const std::vector<char>& free, ResidualNorm no
 }
 
 // (M + sigma C1) y = r on the free rows by Jacobi-preconditioned COCG, y = 0 on the fixed ones;
-// adds weight * Re y to out. Returns the iterations.
+// adds weight * Re y to out. Returns the iterations. The complex vectors hold six doubles per
+// row (the three columns' real parts, then their imaginary parts), and an iteration makes three
+// passes over them: the product fused with <p, q>, the updates fused with |r| and <r, z>, and
+// the new direction (z = J^-1 r is never stored).
 int complex_part(const LinearSystem& system, Complex sigma, const Positions& r, double tolerance,
                  int max_iterations, double weight, Positions& out) {
     const SparseOperator& op = *system.op;
     const int n = op.size();
-    const std::vector<char>& free = system.free;
-    std::vector<Complex> inverse(n, Complex(0));
-    for (int i = 0; i < n; ++i)
-        if (free[i]) inverse[i] = 1.0 / (op.mass[i] - sigma * op.diagonal(i));
-    ComplexPositions y = ComplexPositions::Zero(n, 3), res(n, 3), z(n, 3), p(n, 3), q(n, 3);
-    Positions re(n, 3), im(n, 3), kre, kim;
-    // q = (M - sigma K) p on the free rows (p is 0 on the fixed ones).
-    const auto multiply = [&](const ComplexPositions& v, ComplexPositions& result) {
-        re = v.real();
-        im = v.imag();
-        kre.resize(n, 3);
-        kim.resize(n, 3);
-        for_each_k_row(op, re, [&](int i, double s0, double s1, double s2) {
-            kre(i, 0) = s0, kre(i, 1) = s1, kre(i, 2) = s2;
-        });
-        for_each_k_row(op, im, [&](int i, double s0, double s1, double s2) {
-            kim(i, 0) = s0, kim(i, 1) = s1, kim(i, 2) = s2;
-        });
-        for (int i = 0; i < n; ++i)
-            for (int c = 0; c < 3; ++c)
-                result(i, c) = free[i] ? op.mass[i] * v(i, c) -
-                                             sigma * Complex(kre(i, c), kim(i, c))
-                                       : Complex(0);
+    const int threads = op.threads;
+    const char* free = system.free.data();
+    const double* mass = op.mass.data();
+    const int* start = op.row_start.data();
+    const int* column = op.column.data();
+    const double* w = weights_of(op);
+    const double sr = sigma.real(), si = sigma.imag();
+    std::vector<double> inverse(2 * static_cast<std::size_t>(n), 0.0);  // J^-1 per row, re and im
+    std::vector<double> y(6 * static_cast<std::size_t>(n), 0.0), res(y), p(y), q(y);
+    for (int i = 0; i < n; ++i) {
+        if (!free[i]) continue;
+        const Complex d = 1.0 / (mass[i] - sigma * op.diagonal(i));
+        inverse[2 * i] = d.real();
+        inverse[2 * i + 1] = d.imag();
+        for (int c = 0; c < 3; ++c) res[6 * i + c] = r(i, c);
+    }
+    // z = J^-1 r per row and column: (zr, zi).
+    const auto z_of = [&](int i, int c, double& zr, double& zi) {
+        const double a = inverse[2 * i], b = inverse[2 * i + 1];
+        const double rr = res[6 * i + c], ri = res[6 * i + 3 + c];
+        zr = a * rr - b * ri;
+        zi = a * ri + b * rr;
     };
-    for (int i = 0; i < n; ++i)
-        for (int c = 0; c < 3; ++c) res(i, c) = free[i] ? Complex(r(i, c)) : Complex(0);
-    std::array<Complex, 3> rho{};
+    std::array<double, 9> sums = blocked_sum<9>(n, threads, [&](int i, double* a) {
+        for (int c = 0; c < 3; ++c) {
+            double zr, zi;
+            z_of(i, c, zr, zi);
+            p[6 * i + c] = zr;
+            p[6 * i + 3 + c] = zi;
+            const double rr = res[6 * i + c], ri = res[6 * i + 3 + c];
+            a[c] += rr * rr + ri * ri;
+            a[3 + 2 * c] += rr * zr - ri * zi;  // r . z, unconjugated
+            a[4 + 2 * c] += rr * zi + ri * zr;
+        }
+    });
+    std::array<Complex, 3> rho;
     Column3 goal{0, 0, 0};
     std::array<bool, 3> active{false, false, false};
     for (int c = 0; c < 3; ++c) {
-        goal[c] = tolerance * res.col(c).norm();
+        goal[c] = tolerance * std::sqrt(sums[c]);
         active[c] = goal[c] > 0;
+        rho[c] = Complex(sums[3 + 2 * c], sums[4 + 2 * c]);
     }
-    for (int i = 0; i < n; ++i) z.row(i) = inverse[i] * res.row(i);
-    p = z;
-    for (int c = 0; c < 3; ++c) rho[c] = (res.col(c).array() * z.col(c).array()).sum();
     int it = 0;
     while (any(active) && it < max_iterations) {
         ++it;
-        multiply(p, q);
+        // q = (M - sigma K) p on the free rows, and <p, q> per column.
+        std::array<double, 6> pq{};
+        with_weights(w, [&](const auto& weights) {
+            pq = blocked_sum<6>(n, threads, [&](int i, double* a) {
+                if (!free[i]) return;
+                const double* pi = &p[6 * static_cast<std::size_t>(i)];
+                double k[6] = {0, 0, 0, 0, 0, 0};
+                for (int e = start[i]; e < start[i + 1]; ++e) {
+                    const double* pj = &p[6 * static_cast<std::size_t>(column[e])];
+                    const double we = weights[e];
+                    for (int c = 0; c < 6; ++c) k[c] += we * (pj[c] - pi[c]);
+                }
+                double* qi = &q[6 * static_cast<std::size_t>(i)];
+                for (int c = 0; c < 3; ++c) {
+                    qi[c] = mass[i] * pi[c] - (sr * k[c] - si * k[3 + c]);
+                    qi[3 + c] = mass[i] * pi[3 + c] - (sr * k[3 + c] + si * k[c]);
+                    a[2 * c] += pi[c] * qi[c] - pi[3 + c] * qi[3 + c];
+                    a[2 * c + 1] += pi[c] * qi[3 + c] + pi[3 + c] * qi[c];
+                }
+            });
+        });
+        std::array<Complex, 3> alpha{};
+        for (int c = 0; c < 3; ++c)
+            if (active[c]) alpha[c] = rho[c] / Complex(pq[2 * c], pq[2 * c + 1]);
+        sums = blocked_sum<9>(n, threads, [&](int i, double* a) {
+            if (!free[i]) return;
+            for (int c = 0; c < 3; ++c) {
+                if (!active[c]) continue;
+                const double ar = alpha[c].real(), ai = alpha[c].imag();
+                double* yi = &y[6 * static_cast<std::size_t>(i)];
+                double* ri = &res[6 * static_cast<std::size_t>(i)];
+                const double* pi = &p[6 * static_cast<std::size_t>(i)];
+                const double* qi = &q[6 * static_cast<std::size_t>(i)];
+                yi[c] += ar * pi[c] - ai * pi[3 + c];
+                yi[3 + c] += ar * pi[3 + c] + ai * pi[c];
+                ri[c] -= ar * qi[c] - ai * qi[3 + c];
+                ri[3 + c] -= ar * qi[3 + c] + ai * qi[c];
+                double zr, zi;
+                z_of(i, c, zr, zi);
+                a[c] += ri[c] * ri[c] + ri[3 + c] * ri[3 + c];
+                a[3 + 2 * c] += ri[c] * zr - ri[3 + c] * zi;
+                a[4 + 2 * c] += ri[c] * zi + ri[3 + c] * zr;
+            }
+        });
+        std::array<Complex, 3> beta{};
         for (int c = 0; c < 3; ++c) {
             if (!active[c]) continue;
-            const Complex alpha = rho[c] / (p.col(c).array() * q.col(c).array()).sum();
-            y.col(c) += alpha * p.col(c);
-            res.col(c) -= alpha * q.col(c);
-            const double rn = res.col(c).norm();
-            check_finite(rn, it);
-            if (rn <= goal[c]) active[c] = false;
-        }
-        for (int i = 0; i < n; ++i) z.row(i) = inverse[i] * res.row(i);
-        for (int c = 0; c < 3; ++c) {
-            if (!active[c]) continue;
-            const Complex next = (res.col(c).array() * z.col(c).array()).sum();
-            p.col(c) = z.col(c) + (next / rho[c]) * p.col(c);
+            check_finite(sums[c], it);
+            const Complex next(sums[3 + 2 * c], sums[4 + 2 * c]);
+            beta[c] = next / rho[c];
             rho[c] = next;
+            if (std::sqrt(sums[c]) <= goal[c]) active[c] = false;
         }
+        for_each_row(n, threads, [&](int i) {
+            if (!free[i]) return;
+            double* pi = &p[6 * static_cast<std::size_t>(i)];
+            for (int c = 0; c < 3; ++c) {
+                if (!active[c]) continue;
+                double zr, zi;
+                z_of(i, c, zr, zi);
+                const double br = beta[c].real(), bi = beta[c].imag();
+                const double pr = pi[c], pim = pi[3 + c];
+                pi[c] = zr + br * pr - bi * pim;
+                pi[3 + c] = zi + br * pim + bi * pr;
+            }
+        });
     }
-    out += weight * y.real();
+    for (int i = 0; i < n; ++i)
+        for (int c = 0; c < 3; ++c) out(i, c) += weight * y[6 * static_cast<std::size_t>(i) + c];
     return it;
 }
 
