@@ -113,7 +113,7 @@ QString FilterImplicitFairing::filterInfo(fairing_plugin::FilterId id) const
         "larger features. L&sup3; and L&#8308; (the paper's Figure 3a) are sharper still, each step "
         "one first-order and one complex solve or two complex ones: with the umbrella, two L&sup3; "
         "steps beat four L&sup2; ones on smooth, finely sampled scans (a Loop-subdivided elephant: "
-        "2-3 % lower error) and lose on detailed ones (a dragon: up to 5 % higher); one step "
+        "1.8-2.6 % lower error) and lose on detailed ones (a dragon: up to 5 % higher); one step "
         "can cost as much as 14 L&sup2; steps (a strong step on a 1 M-face torus). "
         "<b>Integration</b>: implicit is stable for any step; explicit is for comparison only. "
         "<b>Preserve volume</b>: restores each closed component's volume after each step "
