@@ -45,12 +45,18 @@ with open(out_path, "a") as out:
                           file=out, flush=True)
                     continue
                 pts = [json.loads(l) for l in res.stdout.splitlines() if l.startswith("{")]
-                fixed = [p for p in pts if p["kind"] == "fixed"]
-                auto = [p for p in pts if p["kind"] == "auto"]
+                fixed = [p for p in pts if p["kind"] == "fixed" and p.get("rms") is not None]
+                failed = sum(1 for p in pts if p["kind"] == "fixed" and p.get("rms") is None)
+                auto = [p for p in pts if p["kind"] == "auto" and p.get("rms") is not None]
+                if not fixed:
+                    print(json.dumps(dict(mesh=m["name"], noise=noise, steps=steps, error="every time step failed",
+                                          failed_time_steps=failed)), file=out, flush=True)
+                    continue
                 best = min(fixed, key=lambda p: p["rms"])
                 print(json.dumps(dict(mesh=m["name"], noise=noise, op=op, order=int(order), steps=steps,
                                       oracle=best["rms"], oracle_ts=best["time_step"],
                                       auto=auto[0]["rms"] if auto else None,
                                       auto_ts=auto[0]["time_step"] if auto else None,
-                                      volume_change=auto[0]["volume_change"] if auto else None)),
+                                      volume_change=auto[0]["volume_change"] if auto else None,
+                                      failed_time_steps=failed)),
                       file=out, flush=True)
