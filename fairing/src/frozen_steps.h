@@ -15,7 +15,9 @@
 // Order 2 without soft weights (D = M on the free rows, complex_factor.h's case): G = G1^2 with
 // G1 = M^-1/2 (-K_ff) M^-1/2, so the Krylov space is built with G1 (one product with K per
 // step, the conditioning of a first-order step) and the function is phi(g^2), whose poles
-// g = +-i / sqrt(lambda) are as far from the spectrum as the complex solve's.
+// g = +-i / sqrt(lambda) are as far from the spectrum as the complex solve's. Orders 3 and 4
+// (the paper's Figure 3a) the same way: G = G1^p, the function phi(g^p), its tridiagonal solves
+// by partial fractions over the p-th roots of -1/lambda (lanczos_filter.h).
 //
 // phi has the pole of a single step, so the Lanczos process on G (or G1) started at u,
 // phi(G) u ~ |u| V_k phi(T_k) e1 (Golub and Meurant, "Matrices, Moments and Quadrature"),
@@ -24,7 +26,8 @@
 // solve: 228 Lanczos steps for 10 curvature L^2 steps at 22.5 against 116 COCG iterations for
 // one on the 1.2 M-face bunny, 204 against 181 on the 1 M-face torus
 // (bench/results/issue12/frozen.md). phi(T_k) e1 is summed from s tridiagonal solves
-// (complex ones, (I +- i sqrt(lambda) T_k), for order 2 via G1). Two passes: the first builds
+// (complex ones, (I +- i sqrt(lambda) T_k), for order 2 via G1; for order p one per conjugate
+// pair of roots, and a real one for odd p). Two passes: the first builds
 // T_k and stops when the coefficient vector |u| phi(T_k) e1, padded with zeros, moves by less
 // than kSafety * tolerance * |D^1/2 x_0| (per column, the D-norm of the error of the step's
 // result: one solve to `tolerance` guarantees that bound, as A >= D) between checks 4 Lanczos
