@@ -180,6 +180,8 @@ private:
     void choose_time_step();
     void take_steps();
     bool take_frozen_steps(double lambda_dt, int steps);
+    bool lanczos_power_step(const LinearSystem& linear, int step, const char* system,
+                            const std::function<void(double)>& progress);
     LinearSystem system_for(const SparseOperator& op, const std::vector<char>& free,
                             double lambda_dt) const;
     void finish(const Eigen::RowVector3d& origin);
@@ -331,10 +333,65 @@ void Run::integrate(const SparseOperator& op, const std::vector<char>& free, dou
         };
     }
     const bool surface = &op == &surface_;
+    if (surface && lanczos_power_step(linear, step, system, settings.progress)) return;
     if (surface && step > 0) settings.previous = &previous_surface_solve_;
     const SolveStats stats = solve(linear, x_, settings);
     if (surface) previous_surface_solve_ = stats;
     record(stats, step, system);
+}
+
+// One L^3 or L^4 step without soft weights as the frozen steps' matrix function of the
+// first-order operator (frozen_steps.h, one step). Its stopping rule bounds the error of the
+// result; the partial-fraction solve (power_solve.h) must bring the L^p residual itself down,
+// which its parts' rounding keeps up by up to (c g)^(p-1) at strong steps: the curvature flow's
+// automatic L^3 x4 on the 51 k-face two-density sphere at half an edge of noise was refused at
+// the 2,000-iteration cap (residual 0.16) and the 1 M-face torus's umbrella step at 7.9e6 took
+// four refinement rounds (auto-gap.md section 28). false: not taken (x_ untouched).
+bool Run::lanczos_power_step(const LinearSystem& linear, int step, const char* system,
+                             const std::function<void(double)>& progress) {
+    if (options_.order < 3 || options_.norm != ResidualNorm::L2 ||
+        options_.preconditioner != Preconditioner::Automatic ||
+        !detail::powers_first_order(linear))
+        return false;
+    detail::FrozenProblem problem;
+    problem.system = &linear;
+    problem.steps = 1;
+    problem.tolerance = options_.tolerance;
+    problem.max_iterations = options_.max_iterations;
+    problem.mesh = &he_;
+    problem.progress = progress;
+    // Its error bound is relative to the positions before the step. A step that all but
+    // collapses the mesh (time steps far past any smoothing: 1e12 on a small sphere) leaves a
+    // result whose own relative error exceeds the tolerance, and the volume restoration would
+    // magnify it into a distorted shape; such a step goes to the solve (x_ as it was), which
+    // brings the residual down or refuses it.
+    const Positions before = x_;
+    const detail::FrozenOutcome outcome = detail::take_frozen_steps(problem, x_);
+    if (!outcome.taken) return false;
+    double shrink = 1;  // the smallest ratio of a column's size after the step to before
+    for (int c = 0; c < 3; ++c) {
+        double after = 0, ahead = 0;
+        for (int i = 0; i < n_; ++i) {
+            if (!linear.free[i]) continue;
+            after += x_(i, c) * x_(i, c);
+            ahead += before(i, c) * before(i, c);
+        }
+        if (ahead > 0) shrink = std::min(shrink, std::sqrt(after / ahead));
+    }
+    if (outcome.error > options_.tolerance * shrink) {
+        x_ = before;
+        return false;
+    }
+    SolveReport report;
+    report.step = step;
+    report.system = system;
+    report.iterations = outcome.products;
+    report.residual = outcome.error;
+    report.frozen_steps = 1;
+    result_.solves.push_back(report);
+    result_.total_iterations += outcome.products;
+    result_.max_residual = std::max(result_.max_residual, outcome.error);
+    return true;
 }
 
 LinearSystem Run::system_for(const SparseOperator& op, const std::vector<char>& free,

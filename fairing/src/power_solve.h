@@ -22,7 +22,11 @@
 // the noisy elephant it needs about as many iterations as the L^2 complex solve of the same
 // lambda_dt (bench/results/issue11/session28-order4). An error e in a part shows in the L^p
 // residual amplified by up to (c g)^(p-1) at the stiff end of the spectrum, so the solve refines:
-// r = b - A x, x += A~^-1 r, until the L^p residual itself meets the goal.
+// r = b - A x, x += A~^-1 r, until the L^p residual itself meets the goal. That residual is what
+// makes strong steps costly here (rounds) or out of reach (the iteration cap), so fair() takes a
+// surface step with the L2 norm and the automatic preconditioner as the frozen steps' matrix
+// function instead (fairing.cpp, lanczos_power_step), whose rule bounds the error of the result;
+// this solve serves the other norms and preconditioners and the boundary curve.
 #pragma once
 
 #include "fairing/solver.h"

@@ -119,9 +119,10 @@ struct Options {
     Integration integration = Integration::Implicit;
     // 1: diffusion with L (eq. 6). 2: with L^2, (I + lambda_dt L^2) X' = X (section 2.6), the
     // paper's recommendation and the better denoiser. 3, 4: (I + lambda_dt (-L)^p) X' = X, the
-    // higher powers of Figure 3a, closer still to a low-pass filter; solved by partial fractions
-    // (a first-order and a complex solve for L^3, two complex ones for L^4) without soft weights,
-    // by Jacobi CG on the L^p system with them (slow for strong steps).
+    // higher powers of Figure 3a, closer still to a low-pass filter. Without soft weights a step
+    // is a function of the first-order operator, by partial fractions over the p-th roots of
+    // -1/lambda_dt (src/frozen_steps.h, src/power_solve.h); with them Jacobi CG on the L^p system
+    // (slow for strong steps).
     int order = 2;
     // Dimensionless; see the conventions above. Must be finite and >= 0. Empty (the default):
     // chosen from the mesh (automatic strength, see the conventions above).
