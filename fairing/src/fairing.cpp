@@ -182,6 +182,9 @@ private:
     bool take_frozen_steps(double lambda_dt, int steps);
     bool lanczos_power_step(const LinearSystem& linear, int step, const char* system,
                             const std::function<void(double)>& progress);
+    detail::FrozenProblem frozen_problem(const LinearSystem& system, int steps) const;
+    void record_frozen(const detail::FrozenOutcome& outcome, int step, const char* system,
+                       int steps);
     LinearSystem system_for(const SparseOperator& op, const std::vector<char>& free,
                             double lambda_dt) const;
     void finish(const Eigen::RowVector3d& origin);
@@ -353,12 +356,7 @@ bool Run::lanczos_power_step(const LinearSystem& linear, int step, const char* s
         options_.preconditioner != Preconditioner::Automatic ||
         !detail::powers_first_order(linear))
         return false;
-    detail::FrozenProblem problem;
-    problem.system = &linear;
-    problem.steps = 1;
-    problem.tolerance = options_.tolerance;
-    problem.max_iterations = options_.max_iterations;
-    problem.mesh = &he_;
+    detail::FrozenProblem problem = frozen_problem(linear, 1);
     problem.progress = progress;
     // Its error bound is relative to the positions before the step. A step that all but
     // collapses the mesh (time steps far past any smoothing: 1e12 on a small sphere) leaves a
@@ -382,16 +380,32 @@ bool Run::lanczos_power_step(const LinearSystem& linear, int step, const char* s
         x_ = before;
         return false;
     }
+    record_frozen(outcome, step, system, 1);
+    return true;
+}
+
+detail::FrozenProblem Run::frozen_problem(const LinearSystem& system, int steps) const {
+    detail::FrozenProblem problem;
+    problem.system = &system;
+    problem.steps = steps;
+    problem.tolerance = options_.tolerance;
+    problem.max_iterations = options_.max_iterations;
+    problem.mesh = &he_;
+    return problem;
+}
+
+// One report for `steps` steps taken at once as the frozen steps' matrix function.
+void Run::record_frozen(const detail::FrozenOutcome& outcome, int step, const char* system,
+                        int steps) {
     SolveReport report;
     report.step = step;
     report.system = system;
     report.iterations = outcome.products;
     report.residual = outcome.error;
-    report.frozen_steps = 1;
+    report.frozen_steps = steps;
     result_.solves.push_back(report);
     result_.total_iterations += outcome.products;
     result_.max_residual = std::max(result_.max_residual, outcome.error);
-    return true;
 }
 
 LinearSystem Run::system_for(const SparseOperator& op, const std::vector<char>& free,
@@ -437,7 +451,8 @@ bool Run::take_frozen_steps(double lambda_dt, int steps) {
         options_.preconditioner != Preconditioner::Automatic)
         return false;
     const std::vector<char> free = surface_free();
-    detail::FrozenProblem problem;
+    std::vector<int> rescaled;  // components rescaled after every step, and their measures
+    std::vector<double> target;
     std::vector<int> unchanged;
     const auto& components = he_.components();
     // A normal offset is restored once, after the last step (Options::preserve_volume).
@@ -456,30 +471,21 @@ bool Run::take_frozen_steps(double lambda_dt, int steps) {
         // In virtual-vertex mode a loop's hidden vertex would not be rescaled with the loop.
         if (moving != components[c].vertices.size() || (virtual_mode_ && !components[c].closed()))
             return false;
-        problem.rescaled.push_back(static_cast<int>(c));
-        problem.target.push_back(target_[c]);
+        rescaled.push_back(static_cast<int>(c));
+        target.push_back(target_[c]);
     }
-    if (!problem.rescaled.empty() && steps > kMaxRescaledSteps) return false;
+    if (!rescaled.empty() && steps > kMaxRescaledSteps) return false;
     const LinearSystem system = system_for(surface_, free, lambda_dt);
-    const bool first_order_unscaled = options_.order == 1 && problem.rescaled.empty();
+    const bool first_order_unscaled = options_.order == 1 && rescaled.empty();
     if (!first_order_unscaled && !detail::powers_first_order(system)) return false;
-    problem.system = &system;
-    problem.steps = steps;
-    problem.tolerance = options_.tolerance;
-    problem.max_iterations = options_.max_iterations;
-    problem.mesh = &he_;
-    if (options_.progress) problem.progress = [this](double f) { report_progress(f); };
-    const detail::FrozenOutcome outcome = detail::take_frozen_steps(problem, x_);
+    detail::FrozenProblem run = frozen_problem(system, steps);
+    run.rescaled = std::move(rescaled);
+    run.target = std::move(target);
+    if (options_.progress) run.progress = [this](double f) { report_progress(f); };
+    const detail::FrozenOutcome outcome = detail::take_frozen_steps(run, x_);
     if (!outcome.taken) return false;
-    SolveReport report;
-    report.system = "surface";
-    report.iterations = outcome.products;
-    report.residual = outcome.error;
-    report.frozen_steps = steps;
-    result_.solves.push_back(report);
-    result_.total_iterations += outcome.products;
-    result_.max_residual = std::max(result_.max_residual, outcome.error);
-    for (int c : problem.rescaled) result_.components[c].restoration = Restoration::Scale;
+    record_frozen(outcome, 0, "surface", steps);
+    for (int c : run.rescaled) result_.components[c].restoration = Restoration::Scale;
     for (int c : unchanged) result_.components[c].restoration = Restoration::Unchanged;
     if (offset) restore();
     for (int i = 0; i < n_; ++i) ever_free_[i] |= free[i];

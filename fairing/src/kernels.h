@@ -146,6 +146,29 @@ std::array<double, N> blocked_sum(int n, int threads, RowFn fn) {
                              });
 }
 
+// Norm per column over the free rows, sums in a fixed order (blocked_reduce).
+inline std::array<double, 3> column_norms(const Positions& v, const std::vector<char>& free, ResidualNorm norm,
+                                             int threads) {
+    const double* d = v.data();
+    const char* f = free.data();
+    const int n = static_cast<int>(v.rows());
+    if (norm == ResidualNorm::LInfinity)
+        return blocked_reduce<3>(
+            n, threads,
+            [=](int i, double* a) {
+                if (!f[i]) return;
+                for (int c = 0; c < 3; ++c) a[c] = std::max(a[c], std::abs(d[3 * i + c]));
+            },
+            [](std::array<double, 3>& total, const std::array<double, 3>& part) {
+                for (int c = 0; c < 3; ++c) total[c] = std::max(total[c], part[c]);
+            });
+    const std::array<double, 3> s = blocked_sum<3>(n, threads, [=](int i, double* a) {
+        if (!f[i]) return;
+        for (int c = 0; c < 3; ++c) a[c] += d[3 * i + c] * d[3 * i + c];
+    });
+    return {std::sqrt(s[0]), std::sqrt(s[1]), std::sqrt(s[2])};
+}
+
 // Calls fn(i, s0, s1, s2, a) for every row i with (s0, s1, s2) = (K x)_i, rows split over
 // op.threads threads; fn only writes row i of its outputs and may add row i's share of a sum to
 // a[0..2] (fresh zeros per row), whose totals are returned (fusing a dot product into the product saves a pass over

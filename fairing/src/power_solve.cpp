@@ -23,20 +23,6 @@ constexpr int kMaxRounds = 6;
 
 bool any(const std::array<bool, 3>& a) { return a[0] || a[1] || a[2]; }
 
-Column3 norms(const Positions& v, const std::vector<char>& free, ResidualNorm norm) {
-    Column3 out{0, 0, 0};
-    for (int i = 0; i < v.rows(); ++i) {
-        if (!free[i]) continue;
-        for (int c = 0; c < 3; ++c) {
-            const double a = std::abs(v(i, c));
-            out[c] = norm == ResidualNorm::LInfinity ? std::max(out[c], a) : out[c] + a * a;
-        }
-    }
-    if (norm == ResidualNorm::L2)
-        for (double& o : out) o = std::sqrt(o);
-    return out;
-}
-
 // (M + sigma C1) y = r on the free rows by Jacobi-preconditioned COCG, y = 0 on the fixed ones;
 // adds weight * Re y to out. Returns the iterations. The complex vectors hold six doubles per
 // row (the three columns' real parts, then their imaginary parts), and an iteration makes three
@@ -185,7 +171,7 @@ SolveStats solve_power(const LinearSystem& system, Positions& x, const Positions
         system.apply(x, q, scratch);
         for (int i = 0; i < n; ++i)
             for (int col = 0; col < 3; ++col) r(i, col) = free[i] ? b(i, col) - q(i, col) : 0.0;
-        const Column3 rn = norms(r, free, settings.norm);
+        const Column3 rn = column_norms(r, system.free, settings.norm, op.threads);
         std::array<bool, 3> active{};
         double worst = 0;
         for (int col = 0; col < 3; ++col) {

@@ -18,28 +18,7 @@ namespace {
 
 using Column3 = std::array<double, 3>;
 
-// Norm per column over the free rows, sums in a fixed order (detail::blocked_reduce).
-Column3 column_norms(const Positions& v, const std::vector<char>& free, ResidualNorm norm,
-                     int threads) {
-    const double* d = v.data();
-    const char* f = free.data();
-    const int n = static_cast<int>(v.rows());
-    if (norm == ResidualNorm::LInfinity)
-        return detail::blocked_reduce<3>(
-            n, threads,
-            [=](int i, double* a) {
-                if (!f[i]) return;
-                for (int c = 0; c < 3; ++c) a[c] = std::max(a[c], std::abs(d[3 * i + c]));
-            },
-            [](Column3& total, const Column3& part) {
-                for (int c = 0; c < 3; ++c) total[c] = std::max(total[c], part[c]);
-            });
-    const Column3 s = detail::blocked_sum<3>(n, threads, [=](int i, double* a) {
-        if (!f[i]) return;
-        for (int c = 0; c < 3; ++c) a[c] += d[3 * i + c] * d[3 * i + c];
-    });
-    return {std::sqrt(s[0]), std::sqrt(s[1]), std::sqrt(s[2])};
-}
+using detail::column_norms;
 
 // Per column sum over the free rows of a_i b_i.
 Column3 column_dots(const Positions& a, const Positions& b, const std::vector<char>& free,
