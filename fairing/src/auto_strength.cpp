@@ -34,22 +34,42 @@ Positions robust_normals(const HalfEdgeMesh& mesh, const Positions& x) {
     return smooth;
 }
 
-Positions smoothed_copy(const SparseOperator& op, const Positions& x, int data, int passes) {
+namespace {
+
+// x moved `passes` times halfway to the mean of its one-ring, neighbour k weighted by weight(k).
+template <class Weight>
+Positions lazy_passes(const SparseOperator& op, const Positions& x, int data, int passes,
+                      const Weight& weight) {
     Positions a = x.topRows(data), b(data, 3);
     for (int pass = 0; pass < passes; ++pass) {
         for (int i = 0; i < data; ++i) {
             Eigen::RowVector3d sum = Eigen::RowVector3d::Zero();
-            int m = 0;
+            double total = 0;
             for (int k = op.row_start[i]; k < op.row_start[i + 1]; ++k)
                 if (op.column[k] < data) {
-                    sum += a.row(op.column[k]);
-                    ++m;
+                    const double w = weight(k);
+                    sum += w * a.row(op.column[k]);
+                    total += w;
                 }
-            b.row(i) = m > 0 ? Eigen::RowVector3d(0.5 * a.row(i) + 0.5 * sum / m) : a.row(i);
+            b.row(i) = total > 0 ? Eigen::RowVector3d(0.5 * a.row(i) + 0.5 * sum / total)
+                                 : a.row(i);
         }
         a.swap(b);
     }
     return a;
+}
+
+}  // namespace
+
+Positions smoothed_copy(const SparseOperator& op, const Positions& x, int data, int passes) {
+    return lazy_passes(op, x, data, passes, [](int) { return 1.0; });
+}
+
+Positions smoothed_copy_weighted(const SparseOperator& op, const Positions& x, int data,
+                                 int passes) {
+    return lazy_passes(op, x, data, passes, [&op](int k) {
+        return op.unit_weights ? 1.0 : std::max(0.0, op.weight[static_cast<std::size_t>(k)]);
+    });
 }
 
 namespace {
@@ -575,7 +595,9 @@ constexpr double kPerturbation = 1e-2;
 // densities, the torus, four scans at three noise levels; curvature flow with 4 steps,
 // scale-dependent with 2): 2 gave the lowest geometric mean of the automatic choice's error over
 // the best fixed step's, 1.06 (curvature) and 1.02 (scale-dependent), against 1.18 and 1.03
-// with the first step's operator for every step; 8 gave 1.11 and 1.04.
+// with the first step's operator for every step; 8 gave 1.11 and 1.04. With the operator's own
+// weights (StrengthProblem::pilot_on_own_weights) 2 again: 1 and 4 passes measured no better
+// (auto-gap.md, section 29).
 constexpr int kPilotPasses = 2;
 
 // With StrengthProblem::pilot, `first` (the operator at x) becomes the steps' mean operator:
@@ -586,7 +608,10 @@ constexpr int kPilotPasses = 2;
 SparseOperator later_operator(const StrengthProblem& p, const Positions& x,
                               const SparseOperator& first) {
     Positions smooth = x;
-    smooth.topRows(p.data_vertices) = smoothed_copy(first, x, p.data_vertices, kPilotPasses);
+    smooth.topRows(p.data_vertices) =
+        p.pilot_on_own_weights
+            ? smoothed_copy_weighted(first, x, p.data_vertices, kPilotPasses)
+            : smoothed_copy(first, x, p.data_vertices, kPilotPasses);
     return p.assemble_at(smooth);
 }
 

@@ -56,7 +56,9 @@
 //   smooth shape less (a sphere is a fixed point of the curvature flow with its volume restored)
 //   or, on scans whose noisy weights held the first step back, more. The s steps are modelled
 //   as s steps on their mean operator: one s-th the operator at the data, the rest the operator
-//   at a lightly smoothed copy of it (StrengthProblem::pilot; K and M are linear in the weights
+//   at a lightly smoothed copy of it (two lazy passes: the umbrella's, or for the scale-dependent
+//   operator its own weights', which keep the irregular triangles' edge lengths closer to what
+//   the later steps see; StrengthProblem::pilot; K and M are linear in the weights
 //   and masses, so the mean is one symmetric operator and one Lanczos process serves). The
 //   Monte-Carlo divergence perturbs the data and builds the same mean at the perturbed data.
 //   The mean overstates what strong steps cost on smooth shapes, where the risk is flat about its
@@ -153,6 +155,11 @@ struct StrengthProblem {
     // divergence from the mean ("Several steps" above). fair() sets it for the curvature flow,
     // whose cotangent weights the noise moves most.
     bool residual_on_later_steps = false;
+    // With pilot: the copy the later steps' operator is assembled at is smoothed with the
+    // operator's own weights (negative ones taken as 0) instead of the umbrella's. fair() sets it
+    // for the scale-dependent operator, whose 1/|e| weights the umbrella's tangential drift on
+    // irregular triangles changes most (auto-gap.md, section 29).
+    bool pilot_on_own_weights = false;
 };
 
 struct StrengthEstimate {
@@ -169,6 +176,10 @@ struct StrengthEstimate {
 
 // x moved `passes` times halfway to the mean of its one-ring (op's columns below `data`).
 Positions smoothed_copy(const SparseOperator& op, const Positions& x, int data, int passes);
+// The same with op's weights (negative ones taken as 0) instead of 1: a_i / 2 + the weighted
+// mean of the neighbours / 2.
+Positions smoothed_copy_weighted(const SparseOperator& op, const Positions& x, int data,
+                                 int passes);
 
 // Robust normals: area-weighted vertex normals averaged over the one-ring (so over two rings of
 // faces), unit length, 0 where undefined. One row per vertex of `mesh`.

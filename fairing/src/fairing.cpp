@@ -756,6 +756,9 @@ void Run::choose_time_step() {
     // both ways (1.06 -> 1.22 and 1.12 -> 1.06 of their best steps; auto-gap.md section 26).
     if (options_.order == 1 && problem.pilot) problem.restorations = problem.steps;
     problem.residual_on_later_steps = options_.op == Operator::CurvatureFlow;
+    // The curvature flow's later steps keep the umbrella's pilot: its own clamped cotangent
+    // weights moved the study's sphere rows away from their best steps (auto-gap.md, 29).
+    problem.pilot_on_own_weights = options_.op == Operator::ScaleDependent;
     problem.explicit_integration = options_.integration == Integration::Explicit;
     // Explicit: at most half the first step's stability bound. At the bound the highest mode
     // flips sign undamped, and later steps on recomputed operators have lower bounds.
