@@ -181,7 +181,9 @@ void FilterImplicitFairing::initParameters(fairing_plugin::FilterId id, const Me
            "area.")));
     par.addParam(RichEnum(kBoundaryMode, d.boundaryMode, labels(boundaryModeLabels()), tr("Boundary"),
         tr("Fixed: boundary vertices do not move. Smooth boundary curve: each boundary loop is "
-           "faired as a curve first, then the interior. Virtual vertex: a hidden vertex at the "
+           "faired as a curve first, then the interior; with the automatic time step the loops "
+           "get one chosen for them on their own (in the log), which takes the noise off the "
+           "border of an open scan that Fixed keeps. Virtual vertex: a hidden vertex at the "
            "centre of each hole lets the boundary move with the surface.")));
     par.addParam(RichBool(kQualityWeights, d.qualityWeights, tr("Use vertex quality as smoothing weight"),
         tr("Per-vertex quality, clamped to [0,1], scales the smoothing at each vertex; 0 keeps "
@@ -263,6 +265,7 @@ fairing_plugin::RunFigures figuresOf(const fairing::Result& r, double seconds)
                       {"volume_after", r.volume_after},
                       {"lambda_dt", r.lambda_dt},
                       {"time_step", r.time_step},
+                      {"boundary_time_step", r.boundary_time_step},
                       {"noise_level", r.noise_level},
                       {"noise_level_edges", r.noise_level_edges},
                       {"mean_edge_length", r.mean_edge_length},
@@ -357,6 +360,11 @@ void FilterImplicitFairing::logSolves(const fairing::Result& r)
                     .arg(num(r.strength_seconds)).arg(r.strength_iterations));
     else
         logLine(QString("Time step: %1 (given)").arg(num(r.time_step)));
+    if (r.boundary_time_step > 0)
+        logLine(QString("Boundary curve time step: %1 (%2)")
+                    .arg(num(r.boundary_time_step))
+                    .arg(r.automatic_time_step ? "automatic, chosen for the loops on their own"
+                                               : "the given time step"));
     logLine(QString::fromUtf8("Steps: %1; absolute λdt per step: %2 (time step %3)")
                 .arg(r.steps).arg(num(r.lambda_dt)).arg(num(r.time_step)));
     for (const fairing::SolveReport& s : r.solves) {

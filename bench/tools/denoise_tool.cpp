@@ -14,6 +14,7 @@
 //                                      edges), volume_change (percent, vs INPUT)
 //   sweep INPUT CLEAN TRUTH OP ORDER STEPS X0 [--ts T1,T2,...] [--auto|--at-chosen]
 //         [--no-volume|--scale] [--freeze] [--keep-drift] [--uniform-offset]
+//         [--smooth-boundary|--virtual-boundary]
 //                                      runs fairing::fair() in-process on INPUT (rounded to
 //                                      float, as the CLI and MeshLab read it) and prints one JSON
 //                                      line per time step (rms: to the surface; rms_normal:
@@ -29,7 +30,10 @@
 //                                      instead of the default normal offset; --freeze: the
 //                                      first step's operator for every step (section 4.3);
 //                                      --keep-drift: Options::cancel_drift off;
-//                                      --uniform-offset: Options::shaped_offset off
+//                                      --uniform-offset: Options::shaped_offset off;
+//                                      --smooth-boundary / --virtual-boundary: BoundaryMode
+//                                      SmoothCurve / VirtualVertex instead of Fixed (each line
+//                                      also gives Result::boundary_time_step)
 // TRUTH: sphere | plane | torus:R:r | mesh (the CLEAN mesh's surface).
 #include "bench_mesh.h"
 #include "denoise_shapes.h"
@@ -63,6 +67,8 @@ template <class R> auto noise_edges(const R& r, int) -> decltype(double(r.noise_
 template <class R> double noise_edges(const R&, long) { return std::nan(""); }
 template <class R> auto strength_seconds(const R& r, int) -> decltype(double(r.strength_seconds)) { return r.strength_seconds; }
 template <class R> double strength_seconds(const R&, long) { return std::nan(""); }
+template <class R> auto curve_step(const R& r, int) -> decltype(double(r.boundary_time_step)) { return r.boundary_time_step; }
+template <class R> double curve_step(const R&, long) { return std::nan(""); }
 template <class R> auto strength_steps(const R& r, int) -> decltype(int(r.strength_iterations)) { return r.strength_iterations; }
 template <class R> int strength_steps(const R&, long) { return 0; }
 // Options::cancel_drift = value, on an engine that has it (false: it has not).
@@ -99,6 +105,7 @@ struct Run {
     Score s;
     double rms_normal = std::nan("");  // RMS of n_i . (x_i - clean_i) / h: what SURE estimates
     double seconds = 0, chosen = std::nan(""), noise = std::nan(""), choosing = std::nan("");
+    double curve = std::nan("");  // Result::boundary_time_step (0: no smoothed boundary curve)
     int cg = 0, lanczos = 0;  // lanczos: the strength estimate's Lanczos steps
     std::string error;
 };
@@ -136,6 +143,7 @@ Run fair_once(const fairing::TriangleMesh& tm, const Mesh& input, const Truth& t
         run.noise = noise_edges(r, 0);
         run.choosing = strength_seconds(r, 0);
         run.lanczos = strength_steps(r, 0);
+        run.curve = curve_step(r, 0);
     } catch (const std::exception& e) {
         run.error = e.what();
         run.s.rms = std::nan("");
@@ -155,11 +163,11 @@ std::string json_text(const std::string& s) {
 void print_run(const char* kind, double ts, const Run& r) {
     std::printf("{\"kind\":\"%s\",\"time_step\":%s,\"rms\":%s,\"rms_normal\":%s,\"max\":%s,"
                 "\"volume_change\":%s,\"seconds\":%s,\"cg\":%d,\"noise_level_edges\":%s,"
-                "\"strength_seconds\":%s,\"strength_iterations\":%d%s%s%s}\n",
+                "\"strength_seconds\":%s,\"strength_iterations\":%d,\"boundary_time_step\":%s%s%s%s}\n",
                 kind, num(ts).c_str(), num(r.s.rms).c_str(), num(r.rms_normal).c_str(),
                 num(r.s.max).c_str(),
                 num(r.s.volume_change).c_str(), num(r.seconds).c_str(), r.cg, num(r.noise).c_str(),
-                num(r.choosing).c_str(), r.lanczos,
+                num(r.choosing).c_str(), r.lanczos, num(r.curve).c_str(),
                 r.error.empty() ? "" : ",\"error\":\"", json_text(r.error).c_str(),
                 r.error.empty() ? "" : "\"");
     std::fflush(stdout);
@@ -185,6 +193,8 @@ int sweep(int argc, char** argv) {
         else if (a == "--no-volume") o.preserve_volume = false;
         else if (a == "--scale") o.restoration = fairing::VolumeRestoration::Scale;
         else if (a == "--freeze") o.freeze_operator = true;
+        else if (a == "--smooth-boundary") o.boundary = fairing::BoundaryMode::SmoothCurve;
+        else if (a == "--virtual-boundary") o.boundary = fairing::BoundaryMode::VirtualVertex;
         else if (a == "--uniform-offset") {
             if (!set_shaped_offset(o, false))
                 throw std::runtime_error("sweep: this engine has no Options::shaped_offset");

@@ -178,6 +178,7 @@ private:
     void release_pairing();
     std::vector<char> surface_free() const;
     void choose_time_step();
+    bool smooths_curve() const;
     void take_steps();
     bool take_frozen_steps(double lambda_dt, int steps);
     bool lanczos_power_step(const LinearSystem& linear, int step, const char* system,
@@ -243,6 +244,7 @@ private:
     double mean_edge_ = 0;
     double length_unit_ = 1;        // (mean edge)^(2 order): lambda_dt per unit time step
     double time_step_ = 0;
+    double curve_time_step_ = 0;    // the boundary curve's (Result::boundary_time_step)
     Result result_;
     bool warned_stability_ = false;
     int needle_faces_ = 0;  // most needles seen by an assembly so far
@@ -709,6 +711,15 @@ void Run::assemble_surface() {
     curve_.threads = detail::threads_for(curve_.size(), options_.threads);
 }
 
+// Whether the boundary loops are smoothed as a curve of their own (section 5.3): some vertex of
+// a loop is free.
+bool Run::smooths_curve() const {
+    if (options_.boundary != BoundaryMode::SmoothCurve || he_.boundary_loops().empty()) return false;
+    for (char f : free_curve_)
+        if (f) return true;
+    return false;
+}
+
 // Whether an operator is assembled after the first step's (and the automatic strength's
 // perturbed one): the steps' own operators, recomputed at every step.
 bool Run::assembles_again() const {
@@ -735,6 +746,7 @@ void Run::choose_time_step() {
     result_.automatic_time_step = !options_.time_step.has_value();
     if (!result_.automatic_time_step) {
         time_step_ = *options_.time_step;
+        curve_time_step_ = time_step_;
         return;
     }
     const auto start = std::chrono::steady_clock::now();
@@ -777,6 +789,9 @@ void Run::choose_time_step() {
                                                                                            : 0);
         problem.cancel_drift.push_back(cancels_drift(c) ? 1 : 0);
     }
+    const bool estimates_curve = smooths_curve();
+    if (estimates_curve && strength_normals_.rows() == 0)  // the curve's estimate needs them too
+        strength_normals_ = detail::strength_normals(problem);
     problem.normals = strength_normals_.rows() > 0 ? &strength_normals_ : nullptr;
     // The first-order curvature flow's loss is its mean curvature, which the shape follows, so
     // the model restores as fair() will; the L^2 flow's loss follows the shape less well, and
@@ -794,13 +809,47 @@ void Run::choose_time_step() {
             return op;
         };
     const detail::StrengthEstimate e = detail::estimate_strength(problem);
+    time_step_ = e.time_step;
+    curve_time_step_ = time_step_;
+    int curve_lanczos_steps = 0;
+    if (estimates_curve && e.noise_level > 0) {
+        // The boundary loops (section 5.3) as a problem of their own: eq. 11 on a loop is a 1-D
+        // operator whose best strength follows the loop's sampling and corners, not the
+        // surface's (on libcgal-demo's open turbine blade the best curve time step moved from
+        // 0.01 to 100 between a tenth and half an edge of noise while the surface's stayed near
+        // 200-270; auto-gap.md, section 29). The noise level and normals are the surface's: a
+        // loop's few vertices would estimate them poorly.
+        detail::StrengthProblem loop = problem;
+        loop.op = &curve_;
+        loop.free = &free_curve_;
+        loop.length_unit = length_unit_;
+        loop.pilot = false;
+        loop.restorations = 1;
+        loop.residual_on_later_steps = false;
+        loop.pilot_on_own_weights = false;
+        loop.restored.clear();
+        loop.offset.clear();
+        loop.cancel_drift.clear();
+        loop.offset_shape = nullptr;
+        loop.noise_level = e.noise_level;
+        loop.progress = nullptr;
+        loop.assemble_at = nullptr;  // modelled on the first step's loop operator
+        if (loop.explicit_integration)
+            loop.max_time_step =
+                0.5 * explicit_bound(curve_, free_curve_, options_.order) / loop.length_unit;
+        try {
+            const detail::StrengthEstimate c = detail::estimate_strength(loop);
+            if (c.time_step > 0) curve_time_step_ = c.time_step;
+            curve_lanczos_steps = c.lanczos_steps;
+        } catch (const Error&) {  // the loops keep the surface's time step; the run goes on
+        }
+    }
     Positions().swap(strength_normals_);
     progress_offset_ = std::max(progress_, kShare);
-    time_step_ = e.time_step;
     result_.noise_level = e.noise_level;
     result_.noise_level_edges = mean_edge_ > 0 ? e.noise_level / mean_edge_ : 0.0;
     result_.trace_fraction = e.trace_fraction;
-    result_.strength_iterations = e.lanczos_steps;
+    result_.strength_iterations = e.lanczos_steps + curve_lanczos_steps;
     result_.strength_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -808,9 +857,10 @@ void Run::choose_time_step() {
 void Run::take_steps() {
     const bool has_units = options_.op != Operator::Umbrella && !options_.normalized;
     const double lambda_dt = time_step_ * (has_units ? length_unit_ : 1.0);
-    const double curve_lambda_dt = time_step_ * length_unit_;
+    const double curve_lambda_dt = curve_time_step_ * length_unit_;
     result_.lambda_dt = lambda_dt;
     result_.time_step = time_step_;
+    result_.boundary_time_step = smooths_curve() ? curve_time_step_ : 0.0;
     const int steps = lambda_dt > 0 ? options_.steps : 0;
     const bool recompute = options_.op != Operator::Umbrella && !options_.freeze_operator;
     const bool curve = options_.boundary == BoundaryMode::SmoothCurve && !he_.boundary_loops().empty();

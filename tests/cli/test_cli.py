@@ -212,7 +212,8 @@ def case_json():
     src = gen("sphere", "sphere.ply")
     V, F = DM.read_ply(src)
     e = DM.mean_edge(V, F)
-    fields = ["vertices", "faces", "operator", "steps", "time_step", "automatic_time_step",
+    fields = ["vertices", "faces", "operator", "steps", "time_step", "boundary_time_step",
+              "automatic_time_step",
               "noise_level", "noise_level_edges", "strength_seconds", "lambda_dt", "cg_iterations",
               "inner_iterations", "residual",
               "volume_before", "volume_after", "seconds_engine", "seconds_total"]

@@ -159,8 +159,9 @@ void addFilterParameters(CLI::App& app, CommandLine& cl, const Values& d)
                  "enclose no volume) after each step. Default: open components are not restored");
     addChoice(app, "--boundary", cl.boundary,
               "[boundaryMode] fixed (boundary vertices stay), curve (section 5.3: boundary loops "
-              "smoothed as curves first) or virtual (a hidden vertex at each loop's barycentre). "
-              "Default: fixed",
+              "smoothed as curves first; with the automatic time step the loops get their own, "
+              "reported as boundary_time_step) or virtual (a hidden vertex at each loop's "
+              "barycentre). Default: fixed",
               {"fixed", "curve", "virtual"}, "MODE");
     auto* weights = app.add_flag("--weights-from-quality", cl.qualityWeights,
                                  "[qualityWeights] Per-vertex quality (PLY 'quality' property) as "

@@ -44,6 +44,7 @@ std::string jsonReport(const RunFacts& f)
     j["boundary"] = f.cl.boundary;
     j["steps"] = r.steps;
     j["time_step"] = r.time_step;
+    j["boundary_time_step"] = r.boundary_time_step;
     j["automatic_time_step"] = r.automatic_time_step;
     j["noise_level"] = r.noise_level;
     j["noise_level_edges"] = r.noise_level_edges;

@@ -243,6 +243,11 @@ struct Result {
     double lambda_dt = 0;           // absolute lambda*dt used per step
     double time_step = 0;           // the dimensionless time step used (chosen or given)
     bool automatic_time_step = false;  // chosen from the mesh (Options::time_step empty)
+    // BoundaryMode::SmoothCurve: the boundary curve's dimensionless time step (scaled like the
+    // scale-dependent operator's). A given time step serves both systems; the automatic strength
+    // chooses the curve's on its own, since a loop of eq. 11 wants a far other strength than the
+    // surface (0 without a smoothed curve).
+    double boundary_time_step = 0;
     double mean_edge_length = 0;    // of the input, in its units (the time step's length unit)
     // Automatic strength only (0 otherwise): the estimated standard deviation of the noise
     // along the normals, in the mesh's units and in mean edge lengths of the input (which normal
