@@ -67,7 +67,9 @@ template <class R> auto noise_edges(const R& r, int) -> decltype(double(r.noise_
 template <class R> double noise_edges(const R&, long) { return std::nan(""); }
 template <class R> auto strength_seconds(const R& r, int) -> decltype(double(r.strength_seconds)) { return r.strength_seconds; }
 template <class R> double strength_seconds(const R&, long) { return std::nan(""); }
-template <class R> auto curve_step(const R& r, int) -> decltype(double(r.boundary_time_step)) { return r.boundary_time_step; }
+template <class R> auto curve_step(const R& r, int) -> decltype(double(r.boundary_time_step)) {
+    return r.boundary_time_step;
+}
 template <class R> double curve_step(const R&, long) { return std::nan(""); }
 template <class R> auto strength_steps(const R& r, int) -> decltype(int(r.strength_iterations)) { return r.strength_iterations; }
 template <class R> int strength_steps(const R&, long) { return 0; }
@@ -163,7 +165,8 @@ std::string json_text(const std::string& s) {
 void print_run(const char* kind, double ts, const Run& r) {
     std::printf("{\"kind\":\"%s\",\"time_step\":%s,\"rms\":%s,\"rms_normal\":%s,\"max\":%s,"
                 "\"volume_change\":%s,\"seconds\":%s,\"cg\":%d,\"noise_level_edges\":%s,"
-                "\"strength_seconds\":%s,\"strength_iterations\":%d,\"boundary_time_step\":%s%s%s%s}\n",
+                "\"strength_seconds\":%s,\"strength_iterations\":%d,"
+                "\"boundary_time_step\":%s%s%s%s}\n",
                 kind, num(ts).c_str(), num(r.s.rms).c_str(), num(r.rms_normal).c_str(),
                 num(r.s.max).c_str(),
                 num(r.s.volume_change).c_str(), num(r.seconds).c_str(), r.cg, num(r.noise).c_str(),

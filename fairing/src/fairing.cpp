@@ -714,7 +714,8 @@ void Run::assemble_surface() {
 // Whether the boundary loops are smoothed as a curve of their own (section 5.3): some vertex of
 // a loop is free.
 bool Run::smooths_curve() const {
-    if (options_.boundary != BoundaryMode::SmoothCurve || he_.boundary_loops().empty()) return false;
+    if (options_.boundary != BoundaryMode::SmoothCurve || he_.boundary_loops().empty())
+        return false;
     for (char f : free_curve_)
         if (f) return true;
     return false;

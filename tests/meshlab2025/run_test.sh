@@ -46,7 +46,8 @@ expect = {"iterations": "int", "inner_iterations": "int", "steps": "int", "verti
           "residual": "double", "volume_before": "double", "volume_after": "double",
           "lambda_dt": "double", "seconds": "double", "engine_seconds": "double",
           "warnings": "int", "unconverged_solves": "int", "explicit_unstable": "bool",
-          "time_step": "double", "boundary_time_step": "double", "automatic_time_step": "bool", "noise_level": "double",
+          "time_step": "double", "boundary_time_step": "double",
+          "automatic_time_step": "bool", "noise_level": "double",
           "noise_level_edges": "double", "mean_edge_length": "double",
           "strength_seconds": "double"}
 if sorted(out) != sorted(expect):
