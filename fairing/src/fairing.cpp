@@ -820,21 +820,20 @@ void Run::choose_time_step() {
         // 0.01 to 100 between a tenth and half an edge of noise while the surface's stayed near
         // 200-270; auto-gap.md, section 29). The noise level and normals are the surface's: a
         // loop's few vertices would estimate them poorly.
-        detail::StrengthProblem loop = problem;
+        // Nothing is restored on a loop, and it is modelled on its first step's operator.
+        detail::StrengthProblem loop;
         loop.op = &curve_;
         loop.free = &free_curve_;
+        loop.weight = problem.weight;
+        loop.x = &x_;
+        loop.mesh = &he_;
+        loop.data_vertices = n_;
         loop.length_unit = length_unit_;
-        loop.pilot = false;
-        loop.restorations = 1;
-        loop.residual_on_later_steps = false;
-        loop.pilot_on_own_weights = false;
-        loop.restored.clear();
-        loop.offset.clear();
-        loop.cancel_drift.clear();
-        loop.offset_shape = nullptr;
+        loop.order = problem.order;
+        loop.steps = problem.steps;
+        loop.explicit_integration = problem.explicit_integration;
+        loop.normals = problem.normals;
         loop.noise_level = e.noise_level;
-        loop.progress = nullptr;
-        loop.assemble_at = nullptr;  // modelled on the first step's loop operator
         if (loop.explicit_integration)
             loop.max_time_step =
                 0.5 * explicit_bound(curve_, free_curve_, options_.order) / loop.length_unit;

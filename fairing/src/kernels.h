@@ -147,8 +147,8 @@ std::array<double, N> blocked_sum(int n, int threads, RowFn fn) {
 }
 
 // Norm per column over the free rows, sums in a fixed order (blocked_reduce).
-inline std::array<double, 3> column_norms(const Positions& v, const std::vector<char>& free, ResidualNorm norm,
-                                             int threads) {
+inline std::array<double, 3> column_norms(const Positions& v, const std::vector<char>& free,
+                                          ResidualNorm norm, int threads) {
     const double* d = v.data();
     const char* f = free.data();
     const int n = static_cast<int>(v.rows());
