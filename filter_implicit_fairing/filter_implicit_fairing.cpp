@@ -184,7 +184,8 @@ void FilterImplicitFairing::initParameters(fairing_plugin::FilterId id, const Me
            "faired as a curve first, then the interior; with the automatic time step the loops "
            "get one chosen for them on their own (in the log), which takes the noise off the "
            "border of an open scan that Fixed keeps. Virtual vertex: a hidden vertex at the "
-           "centre of each hole lets the boundary move with the surface.")));
+           "centre of each hole lets the boundary move with the surface. Automatic (default): "
+           "Smooth boundary curve with the automatic time step, Fixed with one you give.")));
     par.addParam(RichBool(kQualityWeights, d.qualityWeights, tr("Use vertex quality as smoothing weight"),
         tr("Per-vertex quality, clamped to [0,1], scales the smoothing at each vertex; 0 keeps "
            "the vertex fixed, 1 smooths fully. Needs a mesh with vertex quality.")));

@@ -11,6 +11,7 @@
 #include "frozen_steps.h"
 #include "geometry.h"
 #include "kernels.h"
+#include "loop_strength.h"
 #include "offset_shape.h"
 #include "vertex_order.h"
 
@@ -178,6 +179,7 @@ private:
     void release_pairing();
     std::vector<char> surface_free() const;
     void choose_time_step();
+    int choose_curve_time_step(const detail::StrengthProblem& surface, double noise_level);
     bool smooths_curve() const;
     void take_steps();
     bool take_frozen_steps(double lambda_dt, int steps);
@@ -705,7 +707,10 @@ void Run::assemble_surface() {
     worst_.floored_edges = std::max(worst_.floored_edges, assembly.floored_edges);
     worst_.massless_vertices = std::max(worst_.massless_vertices, assembly.massless_vertices);
     needle_faces_ = std::max(needle_faces_, assembly.needle_faces);
-    if (options_.boundary == BoundaryMode::SmoothCurve)
+    // The loops keep their first step's operator: the automatic strength models them so, and
+    // reassembled at every step the curvature flow's four L^2 steps on libcgal-demo's
+    // mech-holes-shark erred 1.11-1.16x the fixed boundary's error (auto-gap.md, section 30).
+    if (options_.boundary == BoundaryMode::SmoothCurve && curve_.size() == 0)
         curve_ = assemble_boundary_curve(he_, x_, options_.threads);
     surface_.threads = detail::threads_for(surface_.size(), options_.threads);
     curve_.threads = detail::threads_for(curve_.size(), options_.threads);
@@ -790,7 +795,7 @@ void Run::choose_time_step() {
                                                                                            : 0);
         problem.cancel_drift.push_back(cancels_drift(c) ? 1 : 0);
     }
-    const bool estimates_curve = smooths_curve();
+    const bool estimates_curve = smooths_curve();  // its estimate assembles loops: the pairing
     if (estimates_curve && strength_normals_.rows() == 0)  // the curve's estimate needs them too
         strength_normals_ = detail::strength_normals(problem);
     problem.normals = strength_normals_.rows() > 0 ? &strength_normals_ : nullptr;
@@ -801,49 +806,20 @@ void Run::choose_time_step() {
         options_.order == 1 && !offset_shape_.empty() ? &offset_shape_ : nullptr;
     problem.noise_level = noise_level_;
     if (options_.progress) problem.progress = [this](double f) { report_progress(kShare * f); };
-    if (options_.op == Operator::Umbrella) release_pairing();  // never assembled again
+    if (options_.op == Operator::Umbrella && !estimates_curve) release_pairing();
     if (options_.op != Operator::Umbrella)  // weights of the positions: Monte-Carlo divergence
-        problem.assemble_at = [this](const Positions& at) {
+        problem.assemble_at = [this, estimates_curve](const Positions& at) {
             SparseOperator op = assemble(options_.op, work_mesh(he_, work_, virtual_mode_), at,
                                          options_.normalized, nullptr, options_.threads);
-            if (!assembles_again()) release_pairing();  // the estimate's last assembly
+            if (!assembles_again() && !estimates_curve) release_pairing();  // the last one
             return op;
         };
     const detail::StrengthEstimate e = detail::estimate_strength(problem);
     time_step_ = e.time_step;
     curve_time_step_ = time_step_;
     int curve_lanczos_steps = 0;
-    if (estimates_curve && e.noise_level > 0) {
-        // The boundary loops (section 5.3) as a problem of their own: eq. 11 on a loop is a 1-D
-        // operator whose best strength follows the loop's sampling and corners, not the
-        // surface's (on libcgal-demo's open turbine blade the best curve time step moved from
-        // 0.01 to 100 between a tenth and half an edge of noise while the surface's stayed near
-        // 200-270; auto-gap.md, section 29). The noise level and normals are the surface's: a
-        // loop's few vertices would estimate them poorly.
-        // Nothing is restored on a loop, and it is modelled on its first step's operator.
-        detail::StrengthProblem loop;
-        loop.op = &curve_;
-        loop.free = &free_curve_;
-        loop.weight = problem.weight;
-        loop.x = &x_;
-        loop.mesh = &he_;
-        loop.data_vertices = n_;
-        loop.length_unit = length_unit_;
-        loop.order = problem.order;
-        loop.steps = problem.steps;
-        loop.explicit_integration = problem.explicit_integration;
-        loop.normals = problem.normals;
-        loop.noise_level = e.noise_level;
-        if (loop.explicit_integration)
-            loop.max_time_step =
-                0.5 * explicit_bound(curve_, free_curve_, options_.order) / loop.length_unit;
-        try {
-            const detail::StrengthEstimate c = detail::estimate_strength(loop);
-            if (c.time_step > 0) curve_time_step_ = c.time_step;
-            curve_lanczos_steps = c.lanczos_steps;
-        } catch (const Error&) {  // the loops keep the surface's time step; the run goes on
-        }
-    }
+    if (estimates_curve && e.noise_level > 0)
+        curve_lanczos_steps = choose_curve_time_step(problem, e.noise_level);
     Positions().swap(strength_normals_);
     progress_offset_ = std::max(progress_, kShare);
     result_.noise_level = e.noise_level;
@@ -852,6 +828,63 @@ void Run::choose_time_step() {
     result_.strength_iterations = e.lanczos_steps + curve_lanczos_steps;
     result_.strength_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The boundary loops (section 5.3) as a problem of their own: eq. 11 on a loop is a 1-D operator
+// whose best strength follows the loop's sampling and corners, not the surface's (on
+// libcgal-demo's open turbine blade the best loop step moved from 0.01 to 100 between a tenth and
+// half an edge of noise while the surface's stayed near 200-270; auto-gap.md, section 29). The
+// noise level and normals are the surface's: a loop's few vertices would estimate them poorly.
+// Nothing is restored on a loop, and it keeps its first step's operator. Implicit L and L^2 are
+// measured exactly by direct solves (loop_strength.h); other cases by the surface's Lanczos
+// model. Returns the Lanczos steps taken; on failure the loops keep the surface's time step.
+int Run::choose_curve_time_step(const detail::StrengthProblem& surface, double noise_level) {
+    // The loop's weights 1/|e| come from the noisy data and, on a loop sampled finer than the
+    // noise, depend on it: the risk takes the Monte-Carlo divergence (auto-gap.md, section 30).
+    const auto assemble_at = [this](const Positions& at) {
+        return assemble_boundary_curve(he_, at, options_.threads);
+    };
+    try {
+        if (surface.order <= 2 && !surface.explicit_integration) {
+            detail::LoopStrengthProblem loop;
+            loop.op = &curve_;
+            loop.free = &free_curve_;
+            loop.weight = surface.weight;
+            loop.x = &x_;
+            loop.normals = surface.normals;
+            loop.mesh = &he_;
+            loop.noise_level = noise_level;
+            loop.length_unit = length_unit_;
+            loop.order = surface.order;
+            loop.steps = surface.steps;
+            loop.assemble_at = assemble_at;
+            const detail::LoopStrength c = detail::loop_strength(loop);
+            if (c.time_step > 0) curve_time_step_ = c.time_step;
+            return 0;
+        }
+        detail::StrengthProblem loop;
+        loop.op = &curve_;
+        loop.free = &free_curve_;
+        loop.weight = surface.weight;
+        loop.x = &x_;
+        loop.mesh = &he_;
+        loop.data_vertices = n_;
+        loop.length_unit = length_unit_;
+        loop.order = surface.order;
+        loop.steps = surface.steps;
+        loop.explicit_integration = surface.explicit_integration;
+        loop.normals = surface.normals;
+        loop.noise_level = noise_level;
+        loop.assemble_at = assemble_at;
+        if (loop.explicit_integration)
+            loop.max_time_step =
+                0.5 * explicit_bound(curve_, free_curve_, options_.order) / loop.length_unit;
+        const detail::StrengthEstimate c = detail::estimate_strength(loop);
+        if (c.time_step > 0) curve_time_step_ = c.time_step;
+        return c.lanczos_steps;
+    } catch (const Error&) {  // the run goes on
+    }
+    return 0;
 }
 
 void Run::take_steps() {

@@ -138,7 +138,7 @@ want = {"order": ["L (first order)", "L2 (second order)", "L3 (third order)",
                   "L4 (fourth order)"],
         "integration": ["Implicit", "Explicit", "Explicit, normalized operator (section 5.5)"],
         "openinvariant": ["None", "Area"],
-        "boundarymode": ["Fixed", "Smooth boundary curve", "Virtual vertex"]}
+        "boundarymode": ["Fixed", "Smooth boundary curve", "Virtual vertex", "Automatic"]}
 if labels != want:
     print("FAIL: enum labels %r, expected %r" % (labels, want)); sys.exit(1)
 for name, ls in labels.items():

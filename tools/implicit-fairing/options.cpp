@@ -160,9 +160,10 @@ void addFilterParameters(CLI::App& app, CommandLine& cl, const Values& d)
     addChoice(app, "--boundary", cl.boundary,
               "[boundaryMode] fixed (boundary vertices stay), curve (section 5.3: boundary loops "
               "smoothed as curves first; with the automatic time step the loops get their own, "
-              "reported as boundary_time_step) or virtual (a hidden vertex at each loop's "
-              "barycentre). Default: fixed",
-              {"fixed", "curve", "virtual"}, "MODE");
+              "reported as boundary_time_step), virtual (a hidden vertex at each loop's "
+              "barycentre) or auto (curve with the automatic time step, fixed with a given "
+              "one). Default: auto",
+              {"fixed", "curve", "virtual", "auto"}, "MODE");
     auto* weights = app.add_flag("--weights-from-quality", cl.qualityWeights,
                                  "[qualityWeights] Per-vertex quality (PLY 'quality' property) as "
                                  "smoothing weight (section 2.7), clamped to [0, 1]; 0 = the "
@@ -271,7 +272,10 @@ Values filterValues(const CommandLine& cl)
     v.cancelDrift = !cl.keepDrift;
     v.shapedOffset = !cl.uniformOffset;
     v.openInvariant = cl.area ? 1 : 0;
-    v.boundaryMode = cl.boundary == "curve" ? 1 : cl.boundary == "virtual" ? 2 : 0;
+    v.boundaryMode = cl.boundary == "curve"     ? 1
+                     : cl.boundary == "virtual" ? 2
+                     : cl.boundary == "auto"    ? filter_parameters::kAutomaticBoundary
+                                                : 0;
     v.qualityWeights = cl.qualityWeights;
     v.invertQuality = cl.invertWeights;
     v.selected = false;

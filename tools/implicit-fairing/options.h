@@ -22,7 +22,7 @@ struct CommandLine {
     int order = 2;                           // 1 | 2
     bool explicitIntegration = false, normalized = false;
     bool noVolume = false, area = false;
-    std::string boundary = "fixed";          // fixed | curve | virtual
+    std::string boundary = "auto";           // fixed | curve | virtual | auto
     std::string volumeRestoration = "offset";  // offset | scale
     bool keepDrift = false;
     bool uniformOffset = false;

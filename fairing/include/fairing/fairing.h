@@ -51,6 +51,7 @@ enum class BoundaryMode {
     Fixed,          // boundary vertices do not move.
     SmoothCurve,    // section 5.3: boundary loops follow eq. 11 restricted to their two boundary
                     // neighbours, solved first; the interior then follows with the new curve.
+                    // The loops keep their first step's weights (section 4.3) in every step.
     VirtualVertex,  // section 5.3: a hidden vertex at the barycentre of each loop, fanned to it.
 };
 

@@ -1,0 +1,255 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
+#include "loop_strength.h"
+
+#include <Eigen/Sparse>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace fairing {
+namespace detail {
+namespace {
+
+using Sparse = Eigen::SparseMatrix<double>;
+
+// The grid of time steps: kPerDecade points per decade from 10^kLowest to 10^kHighest. The best
+// loop steps measured on libcgal-demo's open meshes lay between 0.003 and 30 (auto-gap.md,
+// section 30); the grid reaches three decades past either side.
+constexpr int kLowest = -5, kHighest = 5, kPerDecade = 4;
+constexpr double kProbe = 1e-2;  // the Monte-Carlo probe's size, in noise levels
+
+// One loop system on the free rows f: A(lambda) = D + lambda C, right-hand side D x + lambda g
+// (solver.h's systems with the fixed neighbours' terms in g).
+struct LoopSystem {
+    Sparse c;
+    Eigen::VectorXd d;
+    Eigen::MatrixXd g;
+};
+
+LoopSystem loop_system(const SparseOperator& op, const Positions& y, const std::vector<int>& rows,
+                       const std::vector<int>& index, const std::vector<double>* weight,
+                       int order) {
+    const int n = static_cast<int>(rows.size());
+    std::vector<Eigen::Triplet<double>> k;
+    Eigen::MatrixXd fixed = Eigen::MatrixXd::Zero(n, 3);  // K_fc x_c
+    Eigen::VectorXd mass(n);
+    LoopSystem s;
+    s.d.resize(n);
+    for (int a = 0; a < n; ++a) {
+        const int i = rows[a];
+        double diagonal = 0;
+        for (int e = op.row_start[i]; e < op.row_start[i + 1]; ++e) {
+            const int j = op.column[e];
+            const double w = op.weight[e];
+            diagonal -= w;
+            if (index[j] >= 0) k.emplace_back(a, index[j], w);
+            else fixed.row(a) += w * y.row(j);
+        }
+        k.emplace_back(a, a, diagonal);
+        mass(a) = op.mass[i];
+        s.d(a) = op.mass[i] / (weight ? (*weight)[i] : 1.0);
+    }
+    Sparse kff(n, n);
+    kff.setFromTriplets(k.begin(), k.end());
+    if (order == 1) {
+        s.c = -kff;
+        s.g = fixed;
+    } else {
+        const Eigen::VectorXd inverse_mass = mass.cwiseInverse();
+        s.c = kff * inverse_mass.asDiagonal() * kff;
+        s.g = -(kff * (inverse_mass.asDiagonal() * fixed));
+    }
+    return s;
+}
+
+// The free rows' positions after `steps` steps of lambda from y_f; false if A did not factor.
+bool take_steps(const LoopSystem& s, double lambda, int steps, const Eigen::MatrixXd& y,
+                Eigen::SimplicialLDLT<Sparse>& ldlt, Eigen::MatrixXd& x) {
+    Sparse a = lambda * s.c;
+    Sparse d(s.d.size(), s.d.size());
+    d.reserve(Eigen::VectorXi::Constant(s.d.size(), 1));
+    for (Eigen::Index i = 0; i < s.d.size(); ++i) d.insert(i, i) = s.d(i);
+    a += d;
+    ldlt.factorize(a);
+    if (ldlt.info() != Eigen::Success) return false;
+    x = y;
+    for (int k = 0; k < steps; ++k) {
+        const Eigen::MatrixXd rhs = s.d.asDiagonal() * x + lambda * s.g;
+        x = ldlt.solve(rhs);
+    }
+    return x.allFinite();
+}
+
+std::uint64_t mix(std::uint64_t z) {  // splitmix64's finaliser
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+}
+
+// One direction of the loops' error: a unit direction per free loop vertex, the noise level along
+// it, and its Monte-Carlo probe: the data moved by eps along +-direction and the loop system
+// assembled there.
+struct Channel {
+    Eigen::MatrixXd direction;
+    double noise = 0;
+    double eps = 0;
+    Eigen::VectorXd sign;
+    LoopSystem probed;
+    Eigen::MatrixXd probed_y;
+    Eigen::SimplicialLDLT<Sparse> ldlt;
+    Eigen::MatrixXd moved;
+};
+
+void probe(const LoopStrengthProblem& p, const std::vector<int>& rows,
+           const std::vector<int>& index, std::uint64_t salt, Channel& c) {
+    const int n = static_cast<int>(rows.size());
+    c.sign.resize(n);
+    for (int a = 0; a < n; ++a)
+        c.sign(a) = mix(static_cast<std::uint64_t>(rows[a]) ^ salt) & 1 ? 1.0 : -1.0;
+    if (!(c.noise > 0)) return;
+    c.eps = kProbe * c.noise;
+    Positions x = *p.x;
+    c.probed_y.resize(n, 3);
+    for (int a = 0; a < n; ++a) {
+        x.row(rows[a]) += c.eps * c.sign(a) * c.direction.row(a);
+        c.probed_y.row(a) = x.row(rows[a]);
+    }
+    const SparseOperator op = p.assemble_at ? p.assemble_at(x) : *p.op;
+    c.probed = loop_system(op, x, rows, index, p.weight, p.order);
+}
+
+// The median of v (v is reordered).
+double median(std::vector<double>& v) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+}
+
+}  // namespace
+
+LoopStrength loop_strength(const LoopStrengthProblem& p) {
+    LoopStrength result;
+    const SparseOperator& op = *p.op;
+    const Positions& x = *p.x;
+    const Positions& normals = *p.normals;
+    std::vector<int> rows, index(op.size(), -1);
+    for (int i = 0; i < op.size(); ++i)
+        if ((*p.free)[i] && op.mass[i] > 0 && (!p.weight || (*p.weight)[i] > 0)) {
+            index[i] = static_cast<int>(rows.size());
+            rows.push_back(i);
+        }
+    const int n = static_cast<int>(rows.size());
+    if (n == 0 || !(p.noise_level > 0)) return result;
+
+    Channel along, across;  // n and b
+    along.direction.resize(n, 3);
+    across.direction = Eigen::MatrixXd::Zero(n, 3);
+    Eigen::MatrixXd y(n, 3);
+    for (int a = 0; a < n; ++a) {
+        const int i = rows[a];
+        y.row(a) = x.row(i);
+        along.direction.row(a) = normals.row(i);
+        if (op.row_start[i + 1] - op.row_start[i] != 2) continue;
+        const Eigen::Vector3d tangent =
+            (x.row(op.column[op.row_start[i] + 1]) - x.row(op.column[op.row_start[i]]))
+                .transpose();
+        const Eigen::Vector3d b = tangent.cross(normals.row(i).transpose());
+        if (b.norm() > 0) across.direction.row(a) = b.normalized().transpose();
+    }
+    along.noise = p.noise_level;
+    // The noise across a loop, in the surface: the robust spread of each vertex's offset along b
+    // from the chord of its two loop neighbours (interpolated by arc length, and divided by the
+    // offset's noise gain), about its loop's median offset (a round hole's curvature). Zero when
+    // the noise lies along the normals, up to their tilt; sigma with noise in all directions.
+    std::vector<double> spread;
+    for (const std::vector<int>& loop : p.mesh->boundary_loops()) {
+        std::vector<double> offset;
+        for (int v : loop) {
+            const int a = v < op.size() ? index[v] : -1;
+            if (a < 0 || across.direction.row(a).squaredNorm() == 0) continue;
+            const Eigen::RowVector3d prev = x.row(op.column[op.row_start[v]]);
+            const Eigen::RowVector3d next = x.row(op.column[op.row_start[v] + 1]);
+            const double ep = (x.row(v) - prev).norm(), en = (x.row(v) - next).norm();
+            if (!(ep + en > 0)) continue;
+            const Eigen::RowVector3d chord = (en * prev + ep * next) / (ep + en);
+            const double gain = std::sqrt(1 + (ep * ep + en * en) / ((ep + en) * (ep + en)));
+            offset.push_back(across.direction.row(a).dot(x.row(v) - chord) / gain);
+        }
+        if (offset.empty()) continue;
+        std::vector<double> copy = offset;
+        const double centre = median(copy);
+        for (double o : offset) spread.push_back(std::abs(o - centre));
+    }
+    across.noise = spread.size() >= 8 ? 1.4826 * median(spread) : 0.0;
+    result.across_noise_level = across.noise;
+
+    const LoopSystem base = loop_system(op, x, rows, index, p.weight, p.order);
+    probe(p, rows, index, 0x9e3779b97f4a7c15ull, along);
+    probe(p, rows, index, 0x7f4a7c159e3779b9ull, across);
+    Eigen::SimplicialLDLT<Sparse> ldlt;
+    {
+        Sparse pattern = base.c;
+        for (Eigen::Index i = 0; i < n; ++i) pattern.coeffRef(i, i) += 1;
+        ldlt.analyzePattern(pattern);
+        along.ldlt.analyzePattern(pattern);
+        across.ldlt.analyzePattern(pattern);
+    }
+    std::vector<double> grid, risk;
+    Eigen::MatrixXd moved;
+    for (int k = 0; k <= (kHighest - kLowest) * kPerDecade; ++k) {
+        const double t = std::pow(10.0, kLowest + static_cast<double>(k) / kPerDecade);
+        const double lambda = t * p.length_unit;
+        ++result.factorizations;
+        if (!take_steps(base, lambda, p.steps, y, ldlt, moved)) continue;
+        const Eigen::MatrixXd r = moved - y;
+        double total = 0;
+        bool taken = true;
+        for (Channel* c : {&along, &across}) {
+            // Stein's unbiased risk of the channel (auto_strength.h), the divergence by the probe.
+            double rss = 0;
+            for (int a = 0; a < n; ++a) {
+                const double rd = c->direction.row(a).dot(r.row(a));
+                rss += rd * rd;
+            }
+            total += rss;
+            if (!(c->noise > 0)) continue;
+            ++result.factorizations;
+            if (!take_steps(c->probed, lambda, p.steps, c->probed_y, c->ldlt, c->moved)) {
+                taken = false;
+                break;
+            }
+            double divergence = n;
+            for (int a = 0; a < n; ++a)
+                divergence += c->sign(a) *
+                              c->direction.row(a).dot(c->moved.row(a) - c->probed_y.row(a) -
+                                                      r.row(a)) /
+                              c->eps;
+            total += c->noise * c->noise * (2 * divergence - n);
+        }
+        if (!taken) continue;
+        grid.push_back(t);
+        risk.push_back(total);
+    }
+    if (grid.empty())
+        throw Error("the boundary loops' systems did not factor at any time step");
+    const std::size_t best =
+        static_cast<std::size_t>(std::min_element(risk.begin(), risk.end()) - risk.begin());
+    result.time_step = grid[best];
+    // A parabola through the minimum and its neighbours, in log t.
+    if (best > 0 && best + 1 < grid.size() &&
+        std::abs(grid[best + 1] * grid[best - 1] / (grid[best] * grid[best]) - 1) < 1e-9) {
+        const double r0 = risk[best - 1], r1 = risk[best], r2 = risk[best + 1];
+        const double curvature = r0 - 2 * r1 + r2;
+        if (curvature > 0) {
+            const double shift = 0.5 * (r0 - r2) / curvature;  // in grid intervals, |.| <= 1/2
+            result.time_step = grid[best] * std::pow(grid[best + 1] / grid[best], shift);
+        }
+    }
+    return result;
+}
+
+}  // namespace detail
+}  // namespace fairing
