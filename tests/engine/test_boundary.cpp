@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 using fairing::BoundaryMode;
 using fairing::Operator;
@@ -23,19 +24,21 @@ using meshes::kOperators;
 // z-noise (30% of a cell).
 TriangleMesh noisy_sheet() { return meshes::noisy_open_grid(12, 0.35, 0.3, 19); }
 
-// The same sheet with the central 4x4 cells removed: two boundary loops.
-TriangleMesh noisy_annulus() {
-    const int n = 12;
-    TriangleMesh m = noisy_sheet();
+// An n x n grid (two triangles per cell, meshes::grid's order) without the cells (i, j) with
+// from <= i, j < to: a square hole.
+TriangleMesh with_hole(TriangleMesh m, int n, int from, int to) {
     std::vector<Triangle> kept;
     for (size_t f = 0; f < m.triangles.size(); ++f) {
         const int cell = static_cast<int>(f) / 2, i = cell % n, j = cell / n;
-        if (i >= 4 && i < 8 && j >= 4 && j < 8) continue;
+        if (i >= from && i < to && j >= from && j < to) continue;
         kept.push_back(m.triangles[f]);
     }
     m.triangles = kept;
     return m;
 }
+
+// The same sheet with the central 4x4 cells removed: two boundary loops.
+TriangleMesh noisy_annulus() { return with_hole(noisy_sheet(), 12, 4, 8); }
 
 Options options(Operator op, int order, BoundaryMode mode, int steps = 2) {
     Options o;
@@ -47,6 +50,32 @@ Options options(Operator op, int order, BoundaryMode mode, int steps = 2) {
     o.preserve_volume = false;
     o.tolerance = 1e-12;
     o.max_iterations = 20000;
+    return o;
+}
+
+// The flat sheet [-1,1]^2 of nx x ny cells with Gaussian z-noise of `noise` in units of `unit`.
+TriangleMesh z_noisy_sheet(int nx, int ny, double noise, double unit, std::uint64_t seed) {
+    TriangleMesh m = meshes::grid(nx, ny, 2.0, 2.0, nullptr, -1.0, -1.0);
+    meshes::Rng rng(seed);
+    for (int v = 0; v < m.positions.rows(); ++v) m.positions(v, 2) += noise * unit * rng.normal();
+    return m;
+}
+
+// The RMS over a loop's vertices of value(p, v), divided by h.
+template <class Value>
+double loop_rms(const std::vector<int>& loop, const Positions& p, double h, Value value) {
+    double s = 0;
+    for (int v : loop) s += value(p, v) * value(p, v);
+    return std::sqrt(s / loop.size()) / h;
+}
+
+double z_of(const Positions& p, int v) { return p(v, 2); }
+
+// The options of fair() with the loops smoothed as curves; the time step automatic unless given.
+Options curve_options(Operator op) {
+    Options o;
+    o.op = op;
+    o.boundary = BoundaryMode::SmoothCurve;
     return o;
 }
 
@@ -203,46 +232,33 @@ TEST(Boundary, ClosedMeshHasNoLoops) {
 TEST(Boundary, AutomaticStrengthChoosesTheCurvesOwnTimeStep) {
     const int n = 24;
     const double h = 2.0 / n;
-    TriangleMesh m = meshes::grid(n, n, 2.0, 2.0, nullptr, -1.0, -1.0);
-    const TriangleMesh clean = m;
-    meshes::Rng rng(23);
-    for (int v = 0; v < m.positions.rows(); ++v) m.positions(v, 2) += 0.25 * h * rng.normal();
+    const TriangleMesh m = z_noisy_sheet(n, n, 0.25, h, 23);
     const auto loops = meshes::boundary_loops(m.triangles);
     ASSERT_EQ(loops.size(), 1u);
-    const std::vector<int>& loop = loops[0];
     // The loop's RMS distance to the clean square's outline (in-plane), and its RMS z, in cells.
     const auto outline_error = [&](const Positions& p) {
-        double s = 0;
-        for (int v : loop) {
-            const double d = 1.0 - std::max(std::abs(p(v, 0)), std::abs(p(v, 1)));
-            s += d * d;
-        }
-        return std::sqrt(s / loop.size()) / h;
+        return loop_rms(loops[0], p, h, [](const Positions& q, int v) {
+            return 1.0 - std::max(std::abs(q(v, 0)), std::abs(q(v, 1)));
+        });
     };
-    const auto loop_z = [&](const Positions& p) {
-        double s = 0;
-        for (int v : loop) s += p(v, 2) * p(v, 2);
-        return std::sqrt(s / loop.size()) / h;
-    };
-    ASSERT_EQ(outline_error(clean.positions), 0);
+    const auto loop_z = [&](const Positions& p) { return loop_rms(loops[0], p, h, z_of); };
+    ASSERT_EQ(outline_error(meshes::grid(n, n, 2.0, 2.0, nullptr, -1.0, -1.0).positions), 0);
     for (Operator op : kOperators) {
         SCOPED_TRACE(fairing::to_string(op));
-        Options o;
-        o.op = op;
-        o.boundary = BoundaryMode::SmoothCurve;
-        const fairing::Result automatic = fairing::fair(m, {}, o);
+        const fairing::Result automatic = fairing::fair(m, {}, curve_options(op));
         ASSERT_TRUE(automatic.automatic_time_step);
         EXPECT_GT(automatic.boundary_time_step, 0);
         EXPECT_NE(automatic.boundary_time_step, automatic.time_step);
         EXPECT_LT(loop_z(automatic.positions), 0.6 * loop_z(m.positions));
         EXPECT_LT(outline_error(automatic.positions), 0.25);
         // The surface's time step given explicitly serves both systems, as before.
-        Options given = o;
+        Options given = curve_options(op);
         given.time_step = automatic.time_step;
         const fairing::Result both = fairing::fair(m, {}, given);
         EXPECT_EQ(both.boundary_time_step, automatic.time_step);
-        if (op != Operator::ScaleDependent)
+        if (op != Operator::ScaleDependent) {
             EXPECT_GT(outline_error(both.positions), 2 * outline_error(automatic.positions));
+        }
     }
 }
 
@@ -254,23 +270,15 @@ TEST(Boundary, AutomaticStrengthChoosesTheCurvesOwnTimeStep) {
 // fixed, the risk's minimum fell 40x short of the best loop step on the blade, and here the loop
 // keeps 68 % of its z-noise instead of 38 % (auto-gap.md, section 30).
 TEST(Boundary, AutomaticLoopStepFollowsWeightsThatDependOnTheNoise) {
-    TriangleMesh m = meshes::grid(96, 12, 2.0, 2.0, nullptr, -1.0, -1.0);
-    const double h = meshes::mean_edge_length(m.positions, m.triangles);
-    meshes::Rng rng(31);
-    for (int v = 0; v < m.positions.rows(); ++v) m.positions(v, 2) += 0.25 * h * rng.normal();
+    const TriangleMesh clean = meshes::grid(96, 12, 2.0, 2.0, nullptr, -1.0, -1.0);
+    const double h = meshes::mean_edge_length(clean.positions, clean.triangles);
+    const TriangleMesh m = z_noisy_sheet(96, 12, 0.25, h, 31);
     const auto loops = meshes::boundary_loops(m.triangles);
     ASSERT_EQ(loops.size(), 1u);
-    const auto loop_z = [&](const Positions& p) {
-        double s = 0;
-        for (int v : loops[0]) s += p(v, 2) * p(v, 2);
-        return std::sqrt(s / loops[0].size());
-    };
+    const auto loop_z = [&](const Positions& p) { return loop_rms(loops[0], p, h, z_of); };
     for (Operator op : kOperators) {
         SCOPED_TRACE(fairing::to_string(op));
-        Options o;
-        o.op = op;
-        o.boundary = BoundaryMode::SmoothCurve;
-        const fairing::Result r = fairing::fair(m, {}, o);
+        const fairing::Result r = fairing::fair(m, {}, curve_options(op));
         EXPECT_LT(loop_z(r.positions), 0.5 * loop_z(m.positions));
     }
 }
@@ -283,41 +291,22 @@ TEST(Boundary, AutomaticLoopStepFollowsWeightsThatDependOnTheNoise) {
 TEST(Boundary, AutomaticLoopStepKeepsAHoleOpen) {
     const int n = 24;
     const double h = 2.0 / n;
-    TriangleMesh m = meshes::grid(n, n, 2.0, 2.0, nullptr, -1.0, -1.0);
-    std::vector<Triangle> kept;
-    for (size_t f = 0; f < m.triangles.size(); ++f) {
-        const int cell = static_cast<int>(f) / 2, i = cell % n, j = cell / n;
-        if (i >= 8 && i < 16 && j >= 8 && j < 16) continue;
-        kept.push_back(m.triangles[f]);
-    }
-    m.triangles = kept;
-    meshes::Rng rng(41);
-    for (int v = 0; v < m.positions.rows(); ++v) m.positions(v, 2) += 0.25 * h * rng.normal();
+    const TriangleMesh m = with_hole(z_noisy_sheet(n, n, 0.25, h, 41), n, 8, 16);
     const auto loops = meshes::boundary_loops(m.triangles);
     ASSERT_EQ(loops.size(), 2u);
     const std::vector<int>& hole = loops[0].size() < loops[1].size() ? loops[0] : loops[1];
     const double half = 8 * h / 2;  // the hole is [-half, half]^2
     // RMS of how far the hole's vertices moved into the hole, and of their z, in cells.
     const auto into_hole = [&](const Positions& p) {
-        double s = 0;
-        for (int v : hole) {
-            const double d = std::max(0.0, half - std::max(std::abs(p(v, 0)), std::abs(p(v, 1))));
-            s += d * d;
-        }
-        return std::sqrt(s / hole.size()) / h;
+        return loop_rms(hole, p, h, [half](const Positions& q, int v) {
+            return std::max(0.0, half - std::max(std::abs(q(v, 0)), std::abs(q(v, 1))));
+        });
     };
-    const auto hole_z = [&](const Positions& p) {
-        double s = 0;
-        for (int v : hole) s += p(v, 2) * p(v, 2);
-        return std::sqrt(s / hole.size()) / h;
-    };
+    const auto hole_z = [&](const Positions& p) { return loop_rms(hole, p, h, z_of); };
     ASSERT_LT(into_hole(m.positions), 1e-12);
     for (Operator op : kOperators) {
         SCOPED_TRACE(fairing::to_string(op));
-        Options o;
-        o.op = op;
-        o.boundary = BoundaryMode::SmoothCurve;
-        const fairing::Result r = fairing::fair(m, {}, o);
+        const fairing::Result r = fairing::fair(m, {}, curve_options(op));
         EXPECT_LT(into_hole(r.positions), 0.2);
         EXPECT_LT(hole_z(r.positions), 0.6 * hole_z(m.positions));
     }
