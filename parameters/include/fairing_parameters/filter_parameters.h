@@ -145,7 +145,8 @@ inline fairing::Options toOptions(fairing::Operator op, const Values& v) {
     case 1: o.boundary = fairing::BoundaryMode::SmoothCurve; break;
     case 2: o.boundary = fairing::BoundaryMode::VirtualVertex; break;
     case kAutomaticBoundary:
-        o.boundary = o.time_step ? fairing::BoundaryMode::Fixed : fairing::BoundaryMode::SmoothCurve;
+        o.boundary = o.time_step.has_value() ? fairing::BoundaryMode::Fixed
+                                             : fairing::BoundaryMode::SmoothCurve;
         break;
     default: o.boundary = fairing::BoundaryMode::Fixed; break;
     }
