@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
+#include <utility>
 #include <vector>
 
 namespace fairing {
@@ -16,9 +18,9 @@ namespace {
 
 using Sparse = Eigen::SparseMatrix<double>;
 
-// The grid of time steps: kPerDecade points per decade from 10^kLowest to 10^kHighest. The best
-// loop steps measured on libcgal-demo's open meshes lay between 0.003 and 30 (auto-gap.md,
-// section 30); the grid reaches three decades past either side.
+// The time steps: from 10^kLowest to 10^kHighest, kPerDecade per decade near the minimum. The
+// best loop steps measured on libcgal-demo's open meshes lay between 0.003 and 30 (auto-gap.md,
+// section 30); the range reaches three decades past either side.
 constexpr int kLowest = -5, kHighest = 5, kPerDecade = 4;
 constexpr double kProbe = 1e-2;  // the Monte-Carlo probe's size, in noise levels
 
@@ -197,16 +199,15 @@ LoopStrength loop_strength(const LoopStrengthProblem& p) {
         along.ldlt.analyzePattern(pattern);
         across.ldlt.analyzePattern(pattern);
     }
-    std::vector<double> grid, risk;
+    // The risk at t = 10^(k / kPerDecade), or nothing where a system did not factor.
     Eigen::MatrixXd moved;
-    for (int k = 0; k <= (kHighest - kLowest) * kPerDecade; ++k) {
-        const double t = std::pow(10.0, kLowest + static_cast<double>(k) / kPerDecade);
+    const auto risk_at = [&](int k) -> std::pair<bool, double> {
+        const double t = std::pow(10.0, static_cast<double>(k) / kPerDecade);
         const double lambda = t * p.length_unit;
         ++result.factorizations;
-        if (!take_steps(base, lambda, p.steps, y, ldlt, moved)) continue;
+        if (!take_steps(base, lambda, p.steps, y, ldlt, moved)) return {false, 0.0};
         const Eigen::MatrixXd r = moved - y;
         double total = 0;
-        bool taken = true;
         for (Channel* c : {&along, &across}) {
             // Stein's unbiased risk of the channel (auto_strength.h), the divergence by the probe.
             double rss = 0;
@@ -217,10 +218,8 @@ LoopStrength loop_strength(const LoopStrengthProblem& p) {
             total += rss;
             if (!(c->noise > 0)) continue;
             ++result.factorizations;
-            if (!take_steps(c->probed, lambda, p.steps, c->probed_y, c->ldlt, c->moved)) {
-                taken = false;
-                break;
-            }
+            if (!take_steps(c->probed, lambda, p.steps, c->probed_y, c->ldlt, c->moved))
+                return {false, 0.0};
             double divergence = n;
             for (int a = 0; a < n; ++a)
                 divergence += c->sign(a) *
@@ -229,25 +228,37 @@ LoopStrength loop_strength(const LoopStrengthProblem& p) {
                               c->eps;
             total += c->noise * c->noise * (2 * divergence - n);
         }
-        if (!taken) continue;
-        grid.push_back(t);
-        risk.push_back(total);
-    }
-    if (grid.empty())
+        return {true, total};
+    };
+    // Coarse to fine: every decade, then every quarter decade within one of the coarse minimum
+    // (17 time steps instead of 41: on a sheet with 10,000 one-cell holes the loops' estimate
+    // took 1.6 s against the surface's 0.4 s on all 41).
+    std::map<int, double> risk;
+    const auto evaluate = [&](int k) {
+        if (risk.count(k)) return;
+        const std::pair<bool, double> r = risk_at(k);
+        if (r.first) risk[k] = r.second;
+    };
+    const auto lowest = [&risk]() {
+        return std::min_element(risk.begin(), risk.end(), [](const std::pair<const int, double>& a,
+                                                             const std::pair<const int, double>& b) {
+                   return a.second < b.second;
+               })->first;
+    };
+    for (int k = kLowest * kPerDecade; k <= kHighest * kPerDecade; k += kPerDecade) evaluate(k);
+    if (risk.empty())
         throw Error("the boundary loops' systems did not factor at any time step");
-    const std::size_t best =
-        static_cast<std::size_t>(std::min_element(risk.begin(), risk.end()) - risk.begin());
-    result.time_step = grid[best];
-    // A parabola through the minimum and its neighbours, in log t.
-    if (best > 0 && best + 1 < grid.size() &&
-        std::abs(grid[best + 1] * grid[best - 1] / (grid[best] * grid[best]) - 1) < 1e-9) {
+    const int coarse = lowest();
+    for (int k = coarse - kPerDecade + 1; k < coarse + kPerDecade; ++k)
+        if (k >= kLowest * kPerDecade && k <= kHighest * kPerDecade) evaluate(k);
+    const int best = lowest();
+    double shift = 0;  // a parabola through the minimum and its neighbours, in quarter decades
+    if (risk.count(best - 1) && risk.count(best + 1)) {
         const double r0 = risk[best - 1], r1 = risk[best], r2 = risk[best + 1];
         const double curvature = r0 - 2 * r1 + r2;
-        if (curvature > 0) {
-            const double shift = 0.5 * (r0 - r2) / curvature;  // in grid intervals, |.| <= 1/2
-            result.time_step = grid[best] * std::pow(grid[best + 1] / grid[best], shift);
-        }
+        if (curvature > 0) shift = 0.5 * (r0 - r2) / curvature;  // |shift| <= 1/2
     }
+    result.time_step = std::pow(10.0, (best + shift) / kPerDecade);
     return result;
 }
 

@@ -6,9 +6,10 @@
 // A loop of eq. 11 is a cyclic chain: its implicit system (solver.h: D - lambda K, or
 // D + lambda K P M^-1 K for L^2, on the free loop rows) is banded, and a sparse LDL^T factors it
 // in time linear in the loop's length. So the risk of the loops' s steps is measured exactly at
-// every time step of a log grid (41 points over ten decades) instead of through auto_strength.h's
-// Lanczos model, which on a few hundred loop vertices of very uneven edges (libcgal-demo's
-// turbine blade: nine in ten loop edges under a fifth of the mean edge) has little to converge on.
+// 17 time steps over ten decades (every decade, then every quarter decade near the lowest),
+// instead of through auto_strength.h's Lanczos model, which on a few hundred loop vertices of
+// very uneven edges (libcgal-demo's turbine blade: nine in ten loop edges under a fifth of the
+// mean edge) has little to converge on.
 //
 // Risk: the loops' error in their normal planes, in two directions per free loop vertex i: n_i,
 // the surface's robust unit normal, and b_i, normal to the loop's tangent and n_i (in the surface,
