@@ -163,9 +163,9 @@ done
 shot sphere-dialog
 ocr "$work/sphere-dialog.png" --crop "$dialog" > dialog.txt
 # labels and documented defaults (README "Parameters": curvature flow time step 0 = automatic,
-# 4 steps, L2, implicit, open components None, boundary Fixed, tolerance 1e-8, 2000 iterations): each
-# value read on its label's row (a strip of the dialog at the label's height, OCR'd alone, so
-# the page layout tesseract guesses cannot pair a label with another row's value)
+# 4 steps, L2, implicit, open components None, boundary Automatic, tolerance 1e-8, 2000
+# iterations): each value read on its label's row (a strip of the dialog at the label's height,
+# OCR'd alone, so the page layout tesseract guesses cannot pair a label with another row's value)
 read -r dw dh dx dy <<<"$(echo "$dialog" | tr 'x+' '  ')"
 while IFS='|' read -r label value; do
     pos=$(ocr "$work/sphere-dialog.png" "$label" --crop "$dialog") \
@@ -180,7 +180,7 @@ Smoothing steps|4
 Operator order|L2 \(second order\)
 Integration|Implicit
 Open components|None
-Boundary|Fixed
+Boundary|Automatic
 Solver tolerance|[1l]e-08
 Max solver iterations|2000
 EOF_DEFAULTS
