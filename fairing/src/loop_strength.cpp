@@ -2,6 +2,8 @@
 // SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 #include "loop_strength.h"
 
+#include "geometry.h"
+
 #include <Eigen/Sparse>
 
 #include <algorithm>
@@ -86,12 +88,6 @@ bool take_steps(const LoopSystem& s, double lambda, int steps, const Eigen::Matr
     return x.allFinite();
 }
 
-std::uint64_t mix(std::uint64_t z) {  // splitmix64's finaliser
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-}
-
 // One direction of the loops' error: a unit direction per free loop vertex, the noise level along
 // it, and its Monte-Carlo probe: the data moved by eps along +-direction and the loop system
 // assembled there.
@@ -111,7 +107,7 @@ void probe(const LoopStrengthProblem& p, const std::vector<int>& rows,
     const int n = static_cast<int>(rows.size());
     c.sign.resize(n);
     for (int a = 0; a < n; ++a)
-        c.sign(a) = mix(static_cast<std::uint64_t>(rows[a]) ^ salt) & 1 ? 1.0 : -1.0;
+        c.sign(a) = splitmix64(static_cast<std::uint64_t>(rows[a]) ^ salt) & 1 ? 1.0 : -1.0;
     if (!(c.noise > 0)) return;
     c.eps = kProbe * c.noise;
     Positions x = *p.x;
