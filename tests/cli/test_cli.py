@@ -261,6 +261,16 @@ def case_json():
                   "--no-volume"])
     check(j["volume_after"] < 0.999 * j["volume_before"],
           "--no-volume did not let the sphere shrink: %r" % j)
+    # --boundary auto (the default): an open grid's loop is smoothed with a time step of its own
+    # when the time step is automatic, and stays fixed with a given one
+    grid = gen("grid", "grid.ply")
+    j = run_json([grid, work("grid-auto.ply")])
+    check(j["boundary"] == "auto" and j["boundary_loops"] == 1, "boundary %r" % j)
+    check(j["automatic_time_step"] and j["boundary_time_step"] > 0, "loop step %r" % j)
+    check(j["vertices_fixed"] == 0, "an automatic run kept %d vertices fixed" % j["vertices_fixed"])
+    given = run_json([grid, work("grid-given.ply"), "--time-step", j["time_step"]])
+    check(given["boundary_time_step"] == 0 and given["vertices_fixed"] > 0,
+          "with a given time step the boundary moved: %r" % given)
     # --volume-restoration scale: the paper's scaling, volume kept, another result
     a = run_json([src, work("offset.ply"), "--time-step", 22.5])
     b = run_json([src, work("scaled.ply"), "--time-step", 22.5, "--volume-restoration", "scale"])
