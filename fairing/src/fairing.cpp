@@ -858,8 +858,8 @@ int Run::choose_curve_time_step(const detail::StrengthProblem& surface, double n
             loop.order = surface.order;
             loop.steps = surface.steps;
             loop.assemble_at = assemble_at;
-            const detail::LoopStrength c = detail::loop_strength(loop);
-            if (c.time_step > 0) curve_time_step_ = c.time_step;
+            const double chosen = detail::loop_time_step(loop);
+            if (chosen > 0) curve_time_step_ = chosen;
             return 0;
         }
         detail::StrengthProblem loop;

@@ -31,6 +31,7 @@ constexpr double kProbe = 1e-2;  // the Monte-Carlo probe's size, in noise level
 struct LoopSystem {
     Sparse c;
     Eigen::VectorXd d;
+    Sparse d_matrix;  // d on the diagonal
     Eigen::MatrixXd g;
 };
 
@@ -59,6 +60,9 @@ LoopSystem loop_system(const SparseOperator& op, const Positions& y, const std::
     }
     Sparse kff(n, n);
     kff.setFromTriplets(k.begin(), k.end());
+    s.d_matrix.resize(n, n);
+    s.d_matrix.reserve(Eigen::VectorXi::Constant(n, 1));
+    for (int a = 0; a < n; ++a) s.d_matrix.insert(a, a) = s.d(a);
     if (order == 1) {
         s.c = -kff;
         s.g = fixed;
@@ -73,11 +77,7 @@ LoopSystem loop_system(const SparseOperator& op, const Positions& y, const std::
 // The free rows' positions after `steps` steps of lambda from y_f; false if A did not factor.
 bool take_steps(const LoopSystem& s, double lambda, int steps, const Eigen::MatrixXd& y,
                 Eigen::SimplicialLDLT<Sparse>& ldlt, Eigen::MatrixXd& x) {
-    Sparse a = lambda * s.c;
-    Sparse d(s.d.size(), s.d.size());
-    d.reserve(Eigen::VectorXi::Constant(s.d.size(), 1));
-    for (Eigen::Index i = 0; i < s.d.size(); ++i) d.insert(i, i) = s.d(i);
-    a += d;
+    const Sparse a = lambda * s.c + s.d_matrix;
     ldlt.factorize(a);
     if (ldlt.info() != Eigen::Success) return false;
     x = y;
@@ -128,8 +128,7 @@ double median(std::vector<double>& v) {
 
 }  // namespace
 
-LoopStrength loop_strength(const LoopStrengthProblem& p) {
-    LoopStrength result;
+double loop_time_step(const LoopStrengthProblem& p) {
     const SparseOperator& op = *p.op;
     const Positions& x = *p.x;
     const Positions& normals = *p.normals;
@@ -140,49 +139,47 @@ LoopStrength loop_strength(const LoopStrengthProblem& p) {
             rows.push_back(i);
         }
     const int n = static_cast<int>(rows.size());
-    if (n == 0 || !(p.noise_level > 0)) return result;
+    if (n == 0 || !(p.noise_level > 0)) return 0;
 
+    // Per free loop vertex with its two loop neighbours: b, and its offset along b from the chord
+    // of the neighbours (interpolated by arc length, divided by the offset's noise gain).
     Channel along, across;  // n and b
     along.direction.resize(n, 3);
     across.direction = Eigen::MatrixXd::Zero(n, 3);
+    std::vector<double> offset(n, std::numeric_limits<double>::quiet_NaN());
     Eigen::MatrixXd y(n, 3);
     for (int a = 0; a < n; ++a) {
         const int i = rows[a];
         y.row(a) = x.row(i);
         along.direction.row(a) = normals.row(i);
         if (op.row_start[i + 1] - op.row_start[i] != 2) continue;
-        const Eigen::Vector3d tangent =
-            (x.row(op.column[op.row_start[i] + 1]) - x.row(op.column[op.row_start[i]]))
-                .transpose();
-        const Eigen::Vector3d b = tangent.cross(normals.row(i).transpose());
-        if (b.norm() > 0) across.direction.row(a) = b.normalized().transpose();
+        const Eigen::RowVector3d prev = x.row(op.column[op.row_start[i]]);
+        const Eigen::RowVector3d next = x.row(op.column[op.row_start[i] + 1]);
+        const Eigen::Vector3d b = (next - prev).transpose().cross(normals.row(i).transpose());
+        const double ep = (x.row(i) - prev).norm(), en = (x.row(i) - next).norm();
+        if (!(b.norm() > 0) || !(ep + en > 0)) continue;
+        across.direction.row(a) = b.normalized().transpose();
+        const Eigen::RowVector3d chord = (en * prev + ep * next) / (ep + en);
+        const double gain = std::sqrt(1 + (ep * ep + en * en) / ((ep + en) * (ep + en)));
+        offset[a] = across.direction.row(a).dot(x.row(i) - chord) / gain;
     }
     along.noise = p.noise_level;
-    // The noise across a loop, in the surface: the robust spread of each vertex's offset along b
-    // from the chord of its two loop neighbours (interpolated by arc length, and divided by the
-    // offset's noise gain), about its loop's median offset (a round hole's curvature). Zero when
-    // the noise lies along the normals, up to their tilt; sigma with noise in all directions.
+    // The noise across a loop, in the surface: the robust spread of the offsets about their
+    // loop's median (a round hole's curvature). Zero when the noise lies along the normals, up
+    // to their tilt; sigma with noise in all directions.
     std::vector<double> spread;
     for (const std::vector<int>& loop : p.mesh->boundary_loops()) {
-        std::vector<double> offset;
+        std::vector<double> in_loop;
         for (int v : loop) {
             const int a = v < op.size() ? index[v] : -1;
-            if (a < 0 || across.direction.row(a).squaredNorm() == 0) continue;
-            const Eigen::RowVector3d prev = x.row(op.column[op.row_start[v]]);
-            const Eigen::RowVector3d next = x.row(op.column[op.row_start[v] + 1]);
-            const double ep = (x.row(v) - prev).norm(), en = (x.row(v) - next).norm();
-            if (!(ep + en > 0)) continue;
-            const Eigen::RowVector3d chord = (en * prev + ep * next) / (ep + en);
-            const double gain = std::sqrt(1 + (ep * ep + en * en) / ((ep + en) * (ep + en)));
-            offset.push_back(across.direction.row(a).dot(x.row(v) - chord) / gain);
+            if (a >= 0 && !std::isnan(offset[a])) in_loop.push_back(offset[a]);
         }
-        if (offset.empty()) continue;
-        std::vector<double> copy = offset;
+        if (in_loop.empty()) continue;
+        std::vector<double> copy = in_loop;
         const double centre = median(copy);
-        for (double o : offset) spread.push_back(std::abs(o - centre));
+        for (double o : in_loop) spread.push_back(std::abs(o - centre));
     }
     across.noise = spread.size() >= 8 ? 1.4826 * median(spread) : 0.0;
-    result.across_noise_level = across.noise;
 
     const LoopSystem base = loop_system(op, x, rows, index, p.weight, p.order);
     probe(p, rows, index, 0x9e3779b97f4a7c15ull, along);
@@ -200,7 +197,6 @@ LoopStrength loop_strength(const LoopStrengthProblem& p) {
     const auto risk_at = [&](int k) -> std::pair<bool, double> {
         const double t = std::pow(10.0, static_cast<double>(k) / kPerDecade);
         const double lambda = t * p.length_unit;
-        ++result.factorizations;
         if (!take_steps(base, lambda, p.steps, y, ldlt, moved)) return {false, 0.0};
         const Eigen::MatrixXd r = moved - y;
         double total = 0;
@@ -213,7 +209,6 @@ LoopStrength loop_strength(const LoopStrengthProblem& p) {
             }
             total += rss;
             if (!(c->noise > 0)) continue;
-            ++result.factorizations;
             if (!take_steps(c->probed, lambda, p.steps, c->probed_y, c->ldlt, c->moved))
                 return {false, 0.0};
             double divergence = n;
@@ -235,11 +230,10 @@ LoopStrength loop_strength(const LoopStrengthProblem& p) {
         const std::pair<bool, double> r = risk_at(k);
         if (r.first) risk[k] = r.second;
     };
+    using Entry = std::pair<const int, double>;
     const auto lowest = [&risk]() {
-        return std::min_element(risk.begin(), risk.end(), [](const std::pair<const int, double>& a,
-                                                             const std::pair<const int, double>& b) {
-                   return a.second < b.second;
-               })->first;
+        const auto below = [](const Entry& a, const Entry& b) { return a.second < b.second; };
+        return std::min_element(risk.begin(), risk.end(), below)->first;
     };
     for (int k = kLowest * kPerDecade; k <= kHighest * kPerDecade; k += kPerDecade) evaluate(k);
     if (risk.empty())
@@ -254,8 +248,7 @@ LoopStrength loop_strength(const LoopStrengthProblem& p) {
         const double curvature = r0 - 2 * r1 + r2;
         if (curvature > 0) shift = 0.5 * (r0 - r2) / curvature;  // |shift| <= 1/2
     }
-    result.time_step = std::pow(10.0, (best + shift) / kPerDecade);
-    return result;
+    return std::pow(10.0, (best + shift) / kPerDecade);
 }
 
 }  // namespace detail

@@ -53,14 +53,9 @@ struct LoopStrengthProblem {
     std::function<SparseOperator(const Positions&)> assemble_at;
 };
 
-struct LoopStrength {
-    double time_step = 0;  // 0: no free loop vertex, or no noise
-    double across_noise_level = 0;  // estimated in the surface, across the loops
-    int factorizations = 0;
-};
-
-// Throws Error when a factorization fails on every time step of the grid.
-LoopStrength loop_strength(const LoopStrengthProblem& p);
+// The loops' time step; 0 with no free loop vertex or no noise. Throws Error when the systems
+// fail to factor at every time step.
+double loop_time_step(const LoopStrengthProblem& p);
 
 }  // namespace detail
 }  // namespace fairing
