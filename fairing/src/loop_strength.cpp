@@ -31,8 +31,11 @@ constexpr double kProbe = 1e-2;  // the Monte-Carlo probe's size, in noise level
 struct LoopSystem {
     Sparse c;
     Eigen::VectorXd d;
-    Sparse d_matrix;  // d on the diagonal
     Eigen::MatrixXd g;
+    // A's storage: c's pattern (its diagonal is structural), and where each diagonal entry lies,
+    // so that A(lambda) is written over one allocation rather than formed anew per time step.
+    Sparse a;
+    std::vector<Eigen::Index> diagonal;
 };
 
 LoopSystem loop_system(const SparseOperator& op, const Positions& y, const std::vector<int>& rows,
@@ -60,9 +63,6 @@ LoopSystem loop_system(const SparseOperator& op, const Positions& y, const std::
     }
     Sparse kff(n, n);
     kff.setFromTriplets(k.begin(), k.end());
-    s.d_matrix.resize(n, n);
-    s.d_matrix.reserve(Eigen::VectorXi::Constant(n, 1));
-    for (int a = 0; a < n; ++a) s.d_matrix.insert(a, a) = s.d(a);
     if (order == 1) {
         s.c = -kff;
         s.g = fixed;
@@ -71,19 +71,31 @@ LoopSystem loop_system(const SparseOperator& op, const Positions& y, const std::
         s.c = kff * inverse_mass.asDiagonal() * kff;
         s.g = -(kff * (inverse_mass.asDiagonal() * fixed));
     }
+    s.c.makeCompressed();
+    s.a = s.c;
+    s.diagonal.assign(n, -1);
+    for (int j = 0; j < n; ++j)
+        for (Eigen::Index e = s.c.outerIndexPtr()[j]; e < s.c.outerIndexPtr()[j + 1]; ++e)
+            if (s.c.innerIndexPtr()[e] == j) s.diagonal[j] = e;
+    for (Eigen::Index e : s.diagonal)
+        if (e < 0) throw Error("internal: a boundary loop system without its diagonal");
     return s;
 }
 
 // The free rows' positions after `steps` steps of lambda from y_f; false if A did not factor.
-bool take_steps(const LoopSystem& s, double lambda, int steps, const Eigen::MatrixXd& y,
-                Eigen::SimplicialLDLT<Sparse>& ldlt, Eigen::MatrixXd& x) {
-    const Sparse a = lambda * s.c + s.d_matrix;
-    ldlt.factorize(a);
+bool take_steps(LoopSystem& s, double lambda, int steps, const Eigen::MatrixXd& y,
+                Eigen::SimplicialLDLT<Sparse>& ldlt, Eigen::MatrixXd& x, Eigen::MatrixXd& rhs) {
+    const double* c = s.c.valuePtr();
+    double* a = s.a.valuePtr();
+    for (Eigen::Index e = 0; e < s.c.nonZeros(); ++e) a[e] = lambda * c[e];
+    for (Eigen::Index j = 0; j < s.d.size(); ++j) a[s.diagonal[j]] += s.d(j);
+    ldlt.factorize(s.a);
     if (ldlt.info() != Eigen::Success) return false;
     x = y;
     for (int k = 0; k < steps; ++k) {
-        const Eigen::MatrixXd rhs = s.d.asDiagonal() * x + lambda * s.g;
-        x = ldlt.solve(rhs);
+        rhs.noalias() = s.d.asDiagonal() * x;
+        rhs.noalias() += lambda * s.g;
+        x.noalias() = ldlt.solve(rhs);
     }
     return x.allFinite();
 }
@@ -99,7 +111,7 @@ struct Channel {
     LoopSystem probed;
     Eigen::MatrixXd probed_y;
     Eigen::SimplicialLDLT<Sparse> ldlt;
-    Eigen::MatrixXd moved;
+    Eigen::MatrixXd moved, rhs;
 };
 
 void probe(const LoopStrengthProblem& p, const std::vector<int>& rows,
@@ -181,7 +193,7 @@ double loop_time_step(const LoopStrengthProblem& p) {
     }
     across.noise = spread.size() >= 8 ? 1.4826 * median(spread) : 0.0;
 
-    const LoopSystem base = loop_system(op, x, rows, index, p.weight, p.order);
+    LoopSystem base = loop_system(op, x, rows, index, p.weight, p.order);
     probe(p, rows, index, 0x9e3779b97f4a7c15ull, along);
     probe(p, rows, index, 0x7f4a7c159e3779b9ull, across);
     Eigen::SimplicialLDLT<Sparse> ldlt;
@@ -193,11 +205,11 @@ double loop_time_step(const LoopStrengthProblem& p) {
         across.ldlt.analyzePattern(pattern);
     }
     // The risk at t = 10^(k / kPerDecade), or nothing where a system did not factor.
-    Eigen::MatrixXd moved;
+    Eigen::MatrixXd moved, rhs;
     const auto risk_at = [&](int k) -> std::pair<bool, double> {
         const double t = std::pow(10.0, static_cast<double>(k) / kPerDecade);
         const double lambda = t * p.length_unit;
-        if (!take_steps(base, lambda, p.steps, y, ldlt, moved)) return {false, 0.0};
+        if (!take_steps(base, lambda, p.steps, y, ldlt, moved, rhs)) return {false, 0.0};
         const Eigen::MatrixXd r = moved - y;
         double total = 0;
         for (Channel* c : {&along, &across}) {
@@ -209,7 +221,8 @@ double loop_time_step(const LoopStrengthProblem& p) {
             }
             total += rss;
             if (!(c->noise > 0)) continue;
-            if (!take_steps(c->probed, lambda, p.steps, c->probed_y, c->ldlt, c->moved))
+            if (!take_steps(c->probed, lambda, p.steps, c->probed_y, c->ldlt, c->moved,
+                            c->rhs))
                 return {false, 0.0};
             double divergence = n;
             for (int a = 0; a < n; ++a)
