@@ -709,6 +709,24 @@ constexpr int kRelaxedSteps = 400;
 // on to 296 and chooses 3.8e4 (1.03x). On the 160 runs of auto-gap.md section 10, errors within
 // -1.5 % / +0.9 % of the rule before, in 6,068 Lanczos steps against its 7,764.
 constexpr double kMargin = 2.0;
+// With the later steps' process (StrengthProblem::residual_on_later_steps) and at least
+// kLaterRuleSteps steps, the search, once the mean risk has settled, also finds the minimizer of
+// the risk the choice minimizes (the later steps' residual with the mean's divergence) up to
+// kLaterReach times the mean's, and runs on until the curves have converged to kMargin times
+// that. Before, it stopped on the mean risk alone, and the choice, confined to 2.5x the mean's
+// minimizer, sat at the top of its grid (the curvature flow's four L^2 steps on the 13 k sphere
+// at half an edge: 3147, the best fixed step 1.2e4, 1.29x its error). Measured on those four
+// steps (auto / best fixed step's error, auto-gap.md section 31): the study's spheres, torus
+// and five scans at four noises, seed 1, gmean 1.048 -> 1.039, worst 1.288 -> 1.231 (the 13 k
+// sphere 1.288 -> 1.023 at half an edge, 1.090 -> 1.018 at a quarter; worse at 0.1 edge, 1.092
+// -> 1.121, and the 51 k sphere's 1.001 -> 1.033; the scans as before); other draws (seeds 2
+// and 8) the same way, the 13 k sphere at half an edge 1.086 -> 1.031. Unbounded (no
+// kLaterReach), the 13 k sphere at a quarter edge ran to 4e5 (3.5x its best error): the model
+// misses what the real steps do there. With two or three steps the later operator is less of
+// the filter and the rule chose worse (1.058 -> 1.083 and 1.086 -> 1.101 in geometric mean), so
+// they keep the mean's rule.
+constexpr int kLaterRuleSteps = 4;
+constexpr double kLaterReach = 4.0;
 // The cap on the Lanczos steps: the last checkpoint (they fall at 6, 8, 11, ... 152, 212, 296,
 // 1.4x apart; search()). The cap was 400, whose next checkpoint would have been at 414: a run
 // that had not settled by 296 spent 104 more steps on each process that no checkpoint judged,
@@ -1341,7 +1359,8 @@ struct LaterSteps {
 
 // Runs both Lanczos processes, with the sketched risk at checkpoints, until the risk's
 // minimizer has settled inside the converged part of the curves. `later` (optional) steps
-// along, as many steps as the movement; its curve does not take part in the stopping rule.
+// along, as many steps as the movement; from kLaterRuleSteps steps its residual's risk also
+// has to settle before the search stops.
 Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sketch,
               const Positions& normals, double count, double sigma, LaterSteps* later = nullptr) {
     Search s;
@@ -1420,11 +1439,24 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sk
                              (previous_at_edge && s.minimizer >= previous_minimizer);
         previous_minimizer = s.minimizer;
         previous_at_edge = best + 1 == now.reach;
-        if (exhausted || now.reach == s.grid.size() ||
-            (settled && s.converged_to >= kMargin * s.minimizer)) {
-            s.capped = false;
-            break;
+        const bool complete = exhausted || now.reach == s.grid.size();
+        if (!complete && !(settled && s.converged_to >= kMargin * s.minimizer)) continue;
+        if (later && ctx.p.steps >= kLaterRuleSteps) {
+            // The risk the choice minimizes (risk_minimum): the later steps' residual with the
+            // mean's divergence, over the converged points up to kLaterReach x the mean's
+            // minimizer; the search runs on until it too has kMargin of converged points.
+            std::size_t top = best + 1;
+            while (top < now.reach && s.grid[top] <= kLaterReach * s.grid[best]) ++top;
+            const std::vector<double> rss =
+                later->sketch->rss(*later->ctx, later->u, s.grid, now.first, top);
+            risk.clear();
+            for (std::size_t g = now.first; g < top; ++g)
+                risk.push_back(rss[g] + 2 * sigma * sigma * now.gain[g] * now.trace[g]);
+            s.minimizer = s.grid[now.first + argmin(risk)];
+            if (!complete && s.converged_to < kMargin * s.minimizer) continue;
         }
+        s.capped = false;
+        break;
     }
     if (s.converged_to == 0) {  // nothing converged within the cap: take what there is
         s.converged_to = s.grid.front();

@@ -73,7 +73,10 @@
 //   other two in their pass over the operator's pattern and their sketch's pass, as many steps
 //   as they take, its weights formed from the mean's and the first step's: on the 1 M-face
 //   torus the curvature flow's one-click estimate costs 1.8 of its steps instead of 1.2, its
-//   peak 92 more bytes per vertex (26 on a 10 M-face torus; auto-gap.md, section 15).
+//   peak 92 more bytes per vertex (26 on a 10 M-face torus; auto-gap.md, section 15). From
+//   four steps the search stops only when this risk's minimizer (within 4x the mean's) has
+//   settled too (auto_strength.cpp, kLaterRuleSteps): stopped on the mean's risk, the choice
+//   sat at the top of its window on smooth spheres (auto-gap.md, section 31).
 //
 // Limits: the several-step model is an approximation (bench/results/denoise.md measures it).
 // The Monte-Carlo divergence comes from one probe (a fixed one: the same mesh gives the same

@@ -454,18 +454,20 @@ TEST(AutoStrength, SeveralFirstOrderStepsTakeTheStrongestStepWithinTheRiskError)
 // normals (the study's noise), three draws, against the best of a sweep 1.25x apart. With the
 // mean operator for both halves the choices were 1.4-2.7x too weak: 1.125 of the best error in
 // geometric mean, 1.226 at worst (1.022 and 1.070 when the later steps' residual came in; 1.034
-// and 1.065 before session 27's re-judged risk curve, 1.026 and 1.030 since). With *uniform*
-// radial noise of the same deviation the noise estimate runs 10-14 % high (its median absolute
-// deviation assumes Gaussian noise) and the choice goes 1.5-1.8x too strong (1.095 / 1.178):
-// auto_strength.h, "Limits".
+// and 1.065 before session 27's re-judged risk curve, 1.026 and 1.030 after it; 1.012 and 1.017
+// since the search also waits for the later steps' risk to settle, auto_strength.cpp,
+// kLaterRuleSteps: over eight draws 1.042 and 1.123 before, 1.027 and 1.087 with it). With
+// *uniform* radial noise of the same deviation the noise estimate runs 10-14 % high (its median
+// absolute deviation assumes Gaussian noise) and the choice goes 1.5-1.8x too strong (1.095 /
+// 1.178): auto_strength.h, "Limits".
 TEST(AutoStrength, CurvatureFlowStepsTakeTheirResidualFromTheLaterSteps) {
     const auto noisy = [](const TriangleMesh& clean, double h, int draw) {
         return meshes::gaussian_radial_noise(clean, 0.5 * h, 60 + draw);
     };
     const Ratios r = automatic_against_best_on_two_density_sphere(
         4, 3, noisy, automatic(Operator::CurvatureFlow, 2, 4), 100, 1e5);
-    EXPECT_LT(r.gmean, 1.1);
-    EXPECT_LT(r.worst, 1.15);
+    EXPECT_LT(r.gmean, 1.02);
+    EXPECT_LT(r.worst, 1.025);
 }
 
 // Soft weights multiply lambda row by row, so weights of c everywhere are the unweighted filter
