@@ -340,6 +340,13 @@ void Run::integrate(const SparseOperator& op, const std::vector<char>& free, dou
         };
     }
     const bool surface = &op == &surface_;
+    if (!surface && options_.order <= 2) {  // the loops' cyclic bands: solved directly
+        const SolveStats direct = detail::solve_loops(linear, x_);
+        if (direct.converged) {
+            record(direct, step, system);
+            return;
+        }
+    }
     if (surface && lanczos_power_step(linear, step, system, settings.progress)) return;
     if (surface && step > 0) settings.previous = &previous_surface_solve_;
     const SolveStats stats = solve(linear, x_, settings);
