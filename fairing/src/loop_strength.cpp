@@ -60,7 +60,8 @@ LoopSystem loop_system(const SparseOperator& op, const Positions& y, const std::
         }
         k.emplace_back(a, a, diagonal);
         mass(a) = op.mass[i];
-        s.d(a) = system_diagonal ? (*system_diagonal)[i] : op.mass[i] / (weight ? (*weight)[i] : 1.0);
+        s.d(a) = system_diagonal ? (*system_diagonal)[i]
+                                 : op.mass[i] / (weight ? (*weight)[i] : 1.0);
     }
     Sparse kff(n, n);
     kff.setFromTriplets(k.begin(), k.end());
