@@ -320,6 +320,15 @@ for r in R:
                           r["seconds_auto"], g(r["time_step"]), r["seconds_explicit"], r["ratio"], extra),
                       "extra ≤ 2", st(extra <= 2)))
 
+# 6. none of our runs refused (the engine, the CLI's one-click runs, the invariants' runs): a
+# failure line alone went unnoticed for a session (the dragon's one-click runs, auto-gap.md §31)
+ours_failed = [x for x in meta.get("failures", []) if x["task"].startswith(("ours", "cli-auto", "invariant"))]
+T.append(("every run of ours succeeds", "engine, CLI one-click, invariants",
+          "%d failed%s" % (len(ours_failed), (": " + "; ".join(
+              next((l for l in x["error"].splitlines() if "error:" in l), x["error"].splitlines()[0])[:160]
+              for x in ours_failed[:3])) if ours_failed else ""),
+          "0", st(not ours_failed)))
+
 # ------------------------------------------------------------------ plots
 pngs = []
 
