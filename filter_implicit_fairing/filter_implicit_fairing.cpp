@@ -380,6 +380,11 @@ void FilterImplicitFairing::logSolves(const fairing::Result& r)
                         .arg(s.iterations).arg(num(s.residual)));
             continue;
         }
+        if (s.direct) {  // the boundary loops (the engine's loop_strength.h)
+            logLine(QString("  step %1, %2: solved directly (sparse LDL^T), residual %3")
+                        .arg(s.step).arg(QString::fromStdString(s.system)).arg(num(s.residual)));
+            continue;
+        }
         logLine(QString("  step %1, %2: %3 CG iterations%4, residual %5%6")
                     .arg(s.step).arg(QString::fromStdString(s.system)).arg(s.iterations)
                     .arg(s.factored ? QString(" (factored L² preconditioner: %1 inner "

@@ -293,6 +293,7 @@ void Run::record(const SolveStats& stats, int step, const char* system) {
     report.iterations = stats.iterations;
     report.inner_iterations = stats.inner_iterations;
     report.factored = stats.factored;
+    report.direct = stats.direct;
     report.residual = stats.residual;
     report.converged = stats.converged;
     result_.solves.push_back(report);

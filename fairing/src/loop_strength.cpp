@@ -302,7 +302,7 @@ SolveStats solve_loops(const LinearSystem& system, Positions& x) {
         if (b > 0) stats.residual = std::max(stats.residual, residual.col(c).norm() / b);
     }
     for (int a = 0; a < n; ++a) x.row(rows[a]) = moved.row(a);
-    stats.factored = true;
+    stats.direct = true;
     stats.converged = true;
     return stats;
 }

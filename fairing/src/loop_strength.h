@@ -64,7 +64,7 @@ double loop_time_step(const LoopStrengthProblem& p);
 // are far shorter than the mean edge and the loop step is strong (libcgal-demo's dragon, two
 // three-vertex holes, a tenth of an edge of noise: the complex-factor CG stopped at 70
 // iterations, residual 1.2e-6, and the one-click run was refused).
-// Stats: no iterations, `factored`, the relative residual measured; converged = false with x
+// Stats: no iterations, `direct`, the relative residual measured; converged = false with x
 // untouched when the system does not factor (or has a free row without mass).
 SolveStats solve_loops(const LinearSystem& system, Positions& x);
 

@@ -212,6 +212,7 @@ struct SolveReport {
     // K, against two for an iteration of an L^2 system).
     int inner_iterations = 0;
     bool factored = false;  // the Factored preconditioner was used
+    bool direct = false;    // solved by a sparse LDL^T (the boundary loops), no iterations
     double residual = 0;   // max over x, y, z of ||A X - b|| / ||b|| in the chosen norm
     bool converged = true;
     // > 0: this one report covers that many steps with a frozen operator, taken at once as a
