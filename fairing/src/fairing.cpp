@@ -8,6 +8,7 @@
 #include "fairing/solver.h"
 #include "auto_strength.h"
 #include "complex_factor.h"
+#include "direct_solve.h"
 #include "frozen_steps.h"
 #include "geometry.h"
 #include "kernels.h"
@@ -18,6 +19,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <memory>
 #include <sstream>
 
@@ -51,15 +53,29 @@ const char* to_string(Restoration restoration) {
     case Restoration::Scale: return "scaled about the centroid";
     case Restoration::NormalOffset: return "normal offset of the free vertices";
     case Restoration::Unchanged: return "unchanged (all vertices fixed)";
+    case Restoration::Collapsed: return "left as given (the steps flattened it)";
     }
     return "?";
 }
 
 namespace {
 
+// The most free rows a surface system may have to be factored when its iterative solve stops
+// short (Run::integrate). Measured on noisy tori, curvature L^2 at 22.5, one thread, every step
+// factored (--max-iterations 1): per step 0.7 s and 96 MB at 25 k vertices, 10.7 s and 455 MB at
+// 100 k, 39 s and 838 MB at 200 k, against 0.07, 0.3 and 0.6 s for CG (auto-gap.md section 32).
+constexpr std::ptrdiff_t kMaxDirectFallbackRows = 100000;
+
 std::string number(double v) {
     std::ostringstream s;
     s << v;
+    return s.str();
+}
+
+// A factor to two significant digits ("23", "3.8").
+std::string fold(double v) {
+    std::ostringstream s;
+    s << std::setprecision(2) << v;
     return s.str();
 }
 
@@ -198,6 +214,10 @@ private:
                        double lambda_dt, const char* system);
     void record(const SolveStats& stats, int step, const char* system);
     void restore();
+    double size_of(const Component& component, const Positions& x) const;
+    void leave_as_given(std::size_t c);
+    void leave_if_grown(std::size_t c);
+    void check_collapses();
     Restoration restore_component(std::size_t c, Positions& x,
                                   const std::vector<double>* shape) const;
     void shape_offset();
@@ -234,6 +254,14 @@ private:
     std::vector<char> free_surface_, free_curve_;  // unknowns of the two systems
     std::vector<char> ever_free_;   // moved by some step
     std::vector<double> target_;    // per component: volume (closed) or area (open), or 0
+    // Per restored component its input's size (root mean square distance of its vertices from
+    // their mean), and per vertex whether its component was left as given (Run::restore; empty
+    // while none is).
+    std::vector<double> input_size_;
+    std::vector<char> left_as_given_;
+    double largest_growth_ = 0;  // of the components left as given for growing (0: none did)
+    const char* grown_measure_ = "volume";  // what restoring would have enlarged that one by
+    Eigen::RowVector3d origin_ = Eigen::RowVector3d::Zero();  // x_ = input - origin_
     std::vector<double> offset_shape_;  // Options::shaped_offset, per data vertex; empty: uniform
     // The automatic strength's normals and noise level, computed once for the offset shape and
     // the estimate (empty and 0: not yet).
@@ -342,7 +370,7 @@ void Run::integrate(const SparseOperator& op, const std::vector<char>& free, dou
     }
     const bool surface = &op == &surface_;
     if (!surface && options_.order <= 2) {  // the loops' cyclic bands: solved directly
-        const SolveStats direct = detail::solve_loops(linear, x_);
+        const SolveStats direct = detail::solve_directly(linear, x_);
         if (direct.converged) {
             record(direct, step, system);
             return;
@@ -350,8 +378,25 @@ void Run::integrate(const SparseOperator& op, const std::vector<char>& free, dou
     }
     if (surface && lanczos_power_step(linear, step, system, settings.progress)) return;
     if (surface && step > 0) settings.previous = &previous_surface_solve_;
-    const SolveStats stats = solve(linear, x_, settings);
+    // A solve that stalls on a mesh small enough to factor is solved directly instead
+    // (direct_solve.h). Needles that the curvature flow's later steps make can keep CG from the
+    // tolerance: on libcgal-demo's femur with half an edge of noise the one-click run's fourth
+    // step stalled at a residual of 2.8e-7 after 1242 iterations (84 needles) and was refused.
+    const bool may_factor =
+        options_.direct_fallback && !options_.accept_unconverged && options_.order <= 2 &&
+        std::count(free.begin(), free.end(), char(1)) <= kMaxDirectFallbackRows;
+    Positions before;
+    if (may_factor) before = x_;
+    SolveStats stats = solve(linear, x_, settings);
     if (surface) previous_surface_solve_ = stats;
+    if (!stats.converged && may_factor) {
+        SolveStats direct = detail::solve_directly(linear, before);
+        if (direct.converged) {
+            x_.swap(before);
+            direct.iterations = stats.iterations;  // what the stalled solve cost
+            stats = direct;
+        }
+    }
     record(stats, step, system);
 }
 
@@ -497,19 +542,89 @@ bool Run::take_frozen_steps(double lambda_dt, int steps) {
     const detail::FrozenOutcome outcome = detail::take_frozen_steps(run, x_);
     if (!outcome.taken) return false;
     record_frozen(outcome, 0, "surface", steps);
-    for (int c : run.rescaled) result_.components[c].restoration = Restoration::Scale;
+    for (int c : run.rescaled) {
+        result_.components[c].restoration = Restoration::Scale;
+        leave_if_grown(c);
+    }
     for (int c : unchanged) result_.components[c].restoration = Restoration::Unchanged;
     if (offset) restore();
+    else check_collapses();
     for (int i = 0; i < n_; ++i) ever_free_[i] |= free[i];
     result_.steps = steps;
     report_progress(1.0);
     return true;
 }
 
+// Restores every component's measure (sections 3.1-3.2). A step can flatten a small or thin
+// closed component (a tetrahedron, a plate) into something with almost no volume: scaling it
+// back up then blows it up. On libcgal-demo's b9_mesh, a CAD part of 47 components, the
+// curvature flow's one-click run at a quarter edge of noise moved a four-vertex component by 400
+// mean edges and the rest of the mesh by at most three. Such a component (no fixed vertex,
+// measure zero or negative after the step, or more than twice its input's size once restored) is
+// left as given; a mesh with nothing else to smooth is refused, as before.
 void Run::restore() {
     const std::vector<double>* shape = offset_shape_.empty() ? nullptr : &offset_shape_;
-    for (std::size_t c = 0; c < target_.size(); ++c)
-        if (target_[c] != 0) result_.components[c].restoration = restore_component(c, x_, shape);
+    for (std::size_t c = 0; c < target_.size(); ++c) {
+        if (target_[c] == 0) continue;
+        ComponentReport& report = result_.components[c];
+        if (report.restoration == Restoration::Collapsed) {
+            leave_as_given(c);  // the later steps smoothed it again
+            continue;
+        }
+        if (report.has_fixed) {  // its offset keeps the fixed vertices; failures are reported
+            report.restoration = restore_component(c, x_, shape);
+            continue;
+        }
+        try {
+            report.restoration = restore_component(c, x_, shape);
+        } catch (const Error&) {  // no fixed vertex: the measure itself collapsed
+            leave_as_given(c);
+            continue;
+        }
+        leave_if_grown(c);
+    }
+    check_collapses();
+}
+
+void Run::leave_if_grown(std::size_t c) {
+    constexpr double kMaxGrowth = 2;
+    const double growth = size_of(he_.components()[c], x_) / input_size_[c];
+    if (!(growth > kMaxGrowth)) return;
+    if (growth > largest_growth_) grown_measure_ = result_.components[c].closed ? "volume" : "area";
+    largest_growth_ = std::max(largest_growth_, growth);
+    leave_as_given(c);
+}
+
+// Root mean square distance of the component's vertices from their mean.
+double Run::size_of(const Component& component, const Positions& x) const {
+    Vec3 mean = Vec3::Zero();
+    for (int v : component.vertices) mean += detail::row(x, v);
+    mean /= static_cast<double>(component.vertices.size());
+    double sum = 0;
+    for (int v : component.vertices) sum += (detail::row(x, v) - mean).squaredNorm();
+    return std::sqrt(sum / static_cast<double>(component.vertices.size()));
+}
+
+void Run::leave_as_given(std::size_t c) {
+    if (left_as_given_.empty()) left_as_given_.assign(n_, 0);
+    result_.components[c].restoration = Restoration::Collapsed;
+    for (int v : he_.components()[c].vertices) {
+        left_as_given_[v] = 1;
+        x_.row(v) = input_row(v) - origin_;
+    }
+}
+
+// Refuses the run when every vertex that could move lies in a component left as given.
+void Run::check_collapses() {
+    if (left_as_given_.empty()) return;
+    for (int i = 0; i < n_; ++i)
+        if (restorable_[i] && !he_.is_isolated(i) && !left_as_given_[i]) return;
+    throw Error(std::string("the steps flattened every component that could move: ") +
+                (largest_growth_ > 0 ? std::string("restoring its ") + grown_measure_ +
+                                           " would have enlarged it " + fold(largest_growth_) +
+                                           "-fold"
+                                     : "its volume or area became zero or negative") +
+                ", so the mesh was left unchanged; use a smaller time step");
 }
 
 // x may hold virtual vertices after the first n_ rows; they are not part of any component and
@@ -591,7 +706,8 @@ void Run::cancel_drift(const Eigen::RowVector3d& origin) {
     const auto& components = he_.components();
     const std::vector<Triangle>& faces = he_.faces();
     for (std::size_t c = 0; c < components.size(); ++c) {
-        if (!cancels_drift(c)) continue;
+        if (!cancels_drift(c) || result_.components[c].restoration == Restoration::Collapsed)
+            continue;
         Eigen::Matrix3d normal_moment = Eigen::Matrix3d::Zero();
         Vec3 along_normals = Vec3::Zero();
         for (int f : components[c].faces) {
@@ -685,6 +801,7 @@ void Run::add_virtual_mode() {
 void Run::set_targets() {
     const auto& components = he_.components();
     target_.assign(components.size(), 0.0);
+    input_size_.assign(components.size(), 0.0);
     result_.components.resize(components.size());
     int open_unrestored = 0;
     for (std::size_t c = 0; c < components.size(); ++c) {
@@ -699,6 +816,7 @@ void Run::set_targets() {
         if (cr.closed) target_[c] = cr.measure_before;
         else if (options_.open_invariant == OpenInvariant::Area) target_[c] = cr.measure_before;
         else ++open_unrestored;
+        if (target_[c] != 0) input_size_[c] = size_of(comp, x_);
     }
     if (open_unrestored > 0)
         warn(detail::count_of(open_unrestored, "open component encloses",
@@ -941,8 +1059,9 @@ void Run::finish(const Eigen::RowVector3d& origin) {
     for (int i = 0; i < n_; ++i) {
         if (he_.is_isolated(i)) continue;
         if (!ever_free_[i]) ++fixed;
-        // No step taken (time step 0): keep the input bits, not (p - origin) + origin.
-        if (restorable_[i] && result_.steps > 0)
+        // No step taken (time step 0), or a component left as given (Run::restore): keep the
+        // input bits, not (p - origin) + origin.
+        if (restorable_[i] && result_.steps > 0 && (left_as_given_.empty() || !left_as_given_[i]))
             result_.positions.row(order_.empty() ? i : order_[i]) = x_.row(i) + origin;
     }
     if (!result_.positions.allFinite())
@@ -1024,6 +1143,22 @@ void Run::warn_about_input() {
              " % of the mean edge (duplicated vertices?); their weight was bounded as that of "
              "any edge under " + number(100 * kShortEdge) +
              " % of the mean (MeshLab's 'Merge Close Vertices' repairs this)");
+    int flattened = 0, flattened_vertices = 0;
+    for (std::size_t c = 0; c < result_.components.size(); ++c)
+        if (result_.components[c].restoration == Restoration::Collapsed) {
+            ++flattened;
+            flattened_vertices += static_cast<int>(he_.components()[c].vertices.size());
+        }
+    if (flattened > 0)
+        warn(detail::count_of(flattened, "component", "components") + " (" +
+             detail::count_of(flattened_vertices, "vertex", "vertices") + ") " +
+             (flattened == 1 ? "was" : "were") +
+             " left as given: the steps flattened it, so that " +
+             (largest_growth_ > 0 ? std::string("restoring its ") + grown_measure_ +
+                                        " would have enlarged it " + fold(largest_growth_) +
+                                        "-fold"
+                                  : std::string("its volume or area became zero or negative")) +
+             "; a smaller time step smooths it too");
     if (worst_.massless_vertices > 0)
         warn(detail::count_of(worst_.massless_vertices, "vertex has", "vertices have") +
              " only degenerate faces around it and was kept in place");
@@ -1038,6 +1173,7 @@ void Run::warn_about_input() {
 Result Run::run() {
     check_input();
     const Eigen::RowVector3d origin = centre();
+    origin_ = origin;
     mean_edge_ = mean_edge_length(he_, x_, options_.threads);
     result_.mean_edge_length = mean_edge_;
     // L is in 1/length^2 (L^2 in 1/length^4) for all but the dimensionless operators.

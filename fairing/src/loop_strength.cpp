@@ -2,6 +2,8 @@
 // SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 #include "loop_strength.h"
 
+#include "direct_solve.h"
+
 #include "geometry.h"
 
 #include <Eigen/Sparse>
@@ -18,90 +20,11 @@ namespace fairing {
 namespace detail {
 namespace {
 
-using Sparse = Eigen::SparseMatrix<double>;
-
 // The time steps: from 10^kLowest to 10^kHighest, kPerDecade per decade near the minimum. The
 // best loop steps measured on libcgal-demo's open meshes lay between 0.003 and 30 (auto-gap.md,
 // section 30); the range reaches three decades past either side.
 constexpr int kLowest = -5, kHighest = 5, kPerDecade = 4;
 constexpr double kProbe = 1e-2;  // the Monte-Carlo probe's size, in noise levels
-
-// One loop system on the free rows f: A(lambda) = D + lambda C, right-hand side D x + lambda g
-// (solver.h's systems with the fixed neighbours' terms in g).
-struct LoopSystem {
-    Sparse c;
-    Eigen::VectorXd d;
-    Eigen::MatrixXd g;
-    // A's storage: c's pattern (its diagonal is structural), and where each diagonal entry lies,
-    // so that A(lambda) is written over one allocation rather than formed anew per time step.
-    Sparse a;
-    std::vector<Eigen::Index> diagonal;
-};
-
-// D = M / w, or `system_diagonal` (per row of op) when given.
-LoopSystem loop_system(const SparseOperator& op, const Positions& y, const std::vector<int>& rows,
-                       const std::vector<int>& index, const std::vector<double>* weight,
-                       int order, const std::vector<double>* system_diagonal = nullptr) {
-    const int n = static_cast<int>(rows.size());
-    std::vector<Eigen::Triplet<double>> k;
-    Eigen::MatrixXd fixed = Eigen::MatrixXd::Zero(n, 3);  // K_fc x_c
-    Eigen::VectorXd mass(n);
-    LoopSystem s;
-    s.d.resize(n);
-    for (int a = 0; a < n; ++a) {
-        const int i = rows[a];
-        double diagonal = 0;
-        for (int e = op.row_start[i]; e < op.row_start[i + 1]; ++e) {
-            const int j = op.column[e];
-            const double w = op.weight[e];
-            diagonal -= w;
-            if (index[j] >= 0) k.emplace_back(a, index[j], w);
-            else fixed.row(a) += w * y.row(j);
-        }
-        k.emplace_back(a, a, diagonal);
-        mass(a) = op.mass[i];
-        s.d(a) = system_diagonal ? (*system_diagonal)[i]
-                                 : op.mass[i] / (weight ? (*weight)[i] : 1.0);
-    }
-    Sparse kff(n, n);
-    kff.setFromTriplets(k.begin(), k.end());
-    if (order == 1) {
-        s.c = -kff;
-        s.g = fixed;
-    } else {
-        const Eigen::VectorXd inverse_mass = mass.cwiseInverse();
-        s.c = kff * inverse_mass.asDiagonal() * kff;
-        s.g = -(kff * (inverse_mass.asDiagonal() * fixed));
-    }
-    s.c.makeCompressed();
-    s.a = s.c;
-    s.diagonal.assign(n, -1);
-    for (int j = 0; j < n; ++j)
-        for (Eigen::Index e = s.c.outerIndexPtr()[j]; e < s.c.outerIndexPtr()[j + 1]; ++e)
-            if (s.c.innerIndexPtr()[e] == j) s.diagonal[j] = e;
-    for (Eigen::Index e : s.diagonal)
-        if (e < 0) throw Error("internal: a boundary loop system without its diagonal");
-    return s;
-}
-
-// The free rows' positions after `steps` steps of lambda from y_f, and in rhs the last step's
-// right-hand side; false if A did not factor.
-bool take_steps(LoopSystem& s, double lambda, int steps, const Eigen::MatrixXd& y,
-                Eigen::SimplicialLDLT<Sparse>& ldlt, Eigen::MatrixXd& x, Eigen::MatrixXd& rhs) {
-    const double* c = s.c.valuePtr();
-    double* a = s.a.valuePtr();
-    for (Eigen::Index e = 0; e < s.c.nonZeros(); ++e) a[e] = lambda * c[e];
-    for (Eigen::Index j = 0; j < s.d.size(); ++j) a[s.diagonal[j]] += s.d(j);
-    ldlt.factorize(s.a);
-    if (ldlt.info() != Eigen::Success) return false;
-    x = y;
-    for (int k = 0; k < steps; ++k) {
-        rhs.noalias() = s.d.asDiagonal() * x;
-        rhs.noalias() += lambda * s.g;
-        x.noalias() = ldlt.solve(rhs);
-    }
-    return x.allFinite();
-}
 
 // One direction of the loops' error: a unit direction per free loop vertex, the noise level along
 // it, and its Monte-Carlo probe: the data moved by eps along +-direction and the loop system
@@ -111,9 +34,9 @@ struct Channel {
     double noise = 0;
     double eps = 0;
     Eigen::VectorXd sign;
-    LoopSystem probed;
+    DirectSystem probed;
     Eigen::MatrixXd probed_y;
-    Eigen::SimplicialLDLT<Sparse> ldlt;
+    Eigen::SimplicialLDLT<SparseMatrix> ldlt;
     Eigen::MatrixXd moved, rhs;
 };
 
@@ -132,7 +55,7 @@ void probe(const LoopStrengthProblem& p, const std::vector<int>& rows,
         c.probed_y.row(a) = x.row(rows[a]);
     }
     const SparseOperator op = p.assemble_at ? p.assemble_at(x) : *p.op;
-    c.probed = loop_system(op, x, rows, index, p.weight, p.order);
+    c.probed = direct_system(op, x, rows, index, p.weight, p.order);
 }
 
 // The median of v (v is reordered).
@@ -196,12 +119,12 @@ double loop_time_step(const LoopStrengthProblem& p) {
     }
     across.noise = spread.size() >= 8 ? 1.4826 * median(spread) : 0.0;
 
-    LoopSystem base = loop_system(op, x, rows, index, p.weight, p.order);
+    DirectSystem base = direct_system(op, x, rows, index, p.weight, p.order);
     probe(p, rows, index, 0x9e3779b97f4a7c15ull, along);
     probe(p, rows, index, 0x7f4a7c159e3779b9ull, across);
-    Eigen::SimplicialLDLT<Sparse> ldlt;
+    Eigen::SimplicialLDLT<SparseMatrix> ldlt;
     {
-        Sparse pattern = base.c;
+        SparseMatrix pattern = base.c;
         for (Eigen::Index i = 0; i < n; ++i) pattern.coeffRef(i, i) += 1;
         ldlt.analyzePattern(pattern);
         along.ldlt.analyzePattern(pattern);
@@ -212,7 +135,7 @@ double loop_time_step(const LoopStrengthProblem& p) {
     const auto risk_at = [&](int k) -> std::pair<bool, double> {
         const double t = std::pow(10.0, static_cast<double>(k) / kPerDecade);
         const double lambda = t * p.length_unit;
-        if (!take_steps(base, lambda, p.steps, y, ldlt, moved, rhs)) return {false, 0.0};
+        if (!take_direct_steps(base, lambda, p.steps, y, ldlt, moved, rhs)) return {false, 0.0};
         const Eigen::MatrixXd r = moved - y;
         double total = 0;
         for (Channel* c : {&along, &across}) {
@@ -224,7 +147,7 @@ double loop_time_step(const LoopStrengthProblem& p) {
             }
             total += rss;
             if (!(c->noise > 0)) continue;
-            if (!take_steps(c->probed, lambda, p.steps, c->probed_y, c->ldlt, c->moved,
+            if (!take_direct_steps(c->probed, lambda, p.steps, c->probed_y, c->ldlt, c->moved,
                             c->rhs))
                 return {false, 0.0};
             double divergence = n;
@@ -265,46 +188,6 @@ double loop_time_step(const LoopStrengthProblem& p) {
         if (curvature > 0) shift = 0.5 * (r0 - r2) / curvature;  // |shift| <= 1/2
     }
     return std::pow(10.0, (best + shift) / kPerDecade);
-}
-
-SolveStats solve_loops(const LinearSystem& system, Positions& x) {
-    const SparseOperator& op = *system.op;
-    std::vector<int> rows, index(op.size(), -1);
-    if (system.free.size() != static_cast<std::size_t>(op.size()) ||
-        system.diagonal.size() != system.free.size())
-        return SolveStats{};
-    SolveStats stats;
-    for (int i = 0; i < op.size(); ++i) {
-        if (!system.free[i]) continue;
-        if (!(system.diagonal[i] > 0)) return stats;  // a free row without mass: not ours
-        index[i] = static_cast<int>(rows.size());
-        rows.push_back(i);
-    }
-    const int n = static_cast<int>(rows.size());
-    if (n == 0) {
-        stats.converged = true;
-        return stats;
-    }
-    LoopSystem s = loop_system(op, x, rows, index, nullptr, system.order, &system.diagonal);
-    Eigen::MatrixXd y(n, 3), moved, rhs;
-    for (int a = 0; a < n; ++a) y.row(a) = x.row(rows[a]);
-    Eigen::SimplicialLDLT<Sparse> ldlt;
-    ldlt.analyzePattern(s.a);
-    if (!take_steps(s, system.lambda_dt, 1, y, ldlt, moved, rhs)) return stats;
-    // The relative residual, max over the columns of ||A x - b|| / ||b|| (b: the step's
-    // right-hand side, which take_steps leaves in rhs). It is rounding's: on libcgal-demo's
-    // dragon, whose two loops are three-vertex holes of perimeter 0.02 and 0.07 mean edges, the
-    // strongest loop step leaves 4e-6 at a tenth of an edge of noise (lambda C dwarfs D there),
-    // and two rounds of iterative refinement did not lower it.
-    const Eigen::MatrixXd residual = rhs - s.a * moved;
-    for (int c = 0; c < 3; ++c) {
-        const double b = rhs.col(c).norm();
-        if (b > 0) stats.residual = std::max(stats.residual, residual.col(c).norm() / b);
-    }
-    for (int a = 0; a < n; ++a) x.row(rows[a]) = moved.row(a);
-    stats.direct = true;
-    stats.converged = true;
-    return stats;
 }
 
 }  // namespace detail

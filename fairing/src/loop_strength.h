@@ -58,15 +58,5 @@ struct LoopStrengthProblem {
 // fail to factor at every time step.
 double loop_time_step(const LoopStrengthProblem& p);
 
-// One implicit step of the boundary curve's system (solver.h: D - lambda_dt K, or D + lambda_dt
-// K P M^-1 K, on the free rows; order 1 or 2), solved directly by the same sparse LDL^T: x's
-// free rows take the result. Iterative solves of these systems stalled where the loops' edges
-// are far shorter than the mean edge and the loop step is strong (libcgal-demo's dragon, two
-// three-vertex holes, a tenth of an edge of noise: the complex-factor CG stopped at 70
-// iterations, residual 1.2e-6, and the one-click run was refused).
-// Stats: no iterations, `direct`, the relative residual measured; converged = false with x
-// untouched when the system does not factor (or has a free row without mass).
-SolveStats solve_loops(const LinearSystem& system, Positions& x);
-
 }  // namespace detail
 }  // namespace fairing

@@ -214,6 +214,7 @@ TEST(BadInput, IterationCapTooLow) {
     Options o;
     o.tolerance = 1e-14;
     o.max_iterations = 1;
+    o.direct_fallback = false;  // else solved directly (test_convergence.cpp)
     const std::string msg = error_of(m, {}, o);
     EXPECT_TRUE(contains(msg, "did not converge")) << "got: '" << msg << "'";
 

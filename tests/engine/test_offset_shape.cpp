@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 using fairing::Operator;
 using fairing::Options;
@@ -59,6 +60,18 @@ double torus_error(const Positions& x) {
         sum += d * d;
     }
     return std::sqrt(sum / x.rows());
+}
+
+// The error of a run at a given time step for a sweep, or infinity where the steps collapse the
+// tube so far that restoring its volume would more than double the torus (refused: Run::restore).
+double swept_error(const TriangleMesh& m, const Options& o) {
+    try {
+        return torus_error(fairing::fair(m, {}, o).positions);
+    } catch (const fairing::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("flattened every component"), std::string::npos)
+            << e.what();
+        return std::numeric_limits<double>::infinity();
+    }
 }
 
 // The curvature flow's one-click settings (L^2, four steps), automatic strength unless given.
@@ -197,7 +210,7 @@ TEST(OffsetShape, FirstOrderAutomaticStrengthModelsTheShape) {
                 double best = std::numeric_limits<double>::infinity();
                 for (double time_step = 0.5; time_step < 200; time_step *= 1.25) {
                     shaped.time_step = time_step;
-                    best = std::min(best, torus_error(fairing::fair(m, {}, shaped).positions));
+                    best = std::min(best, swept_error(m, shaped));
                 }
                 EXPECT_LT(error, 1.15 * best);
             }
@@ -297,7 +310,7 @@ TEST(OffsetShape, SeveralFirstOrderStepsSwitchPerStep) {
             double best = std::numeric_limits<double>::infinity();
             for (double time_step = 0.5; time_step < 40; time_step *= 1.1) {
                 o.time_step = time_step;
-                best = std::min(best, torus_error(fairing::fair(m, {}, o).positions));
+                best = std::min(best, swept_error(m, o));
             }
             EXPECT_LT(error, 1.2 * best);
         }

@@ -80,6 +80,13 @@ TEST(BadInputTable, SingleTriangleMovableBoundaryStaysFinite) {
                 Options o = defaults(op);
                 o.boundary = mode;
                 o.open_invariant = inv;
+                // The curvature flow's steps flatten the triangle about its virtual vertex;
+                // scaling its area back would enlarge it: refused (Run::restore).
+                if (op == Operator::CurvatureFlow && inv == fairing::OpenInvariant::Area &&
+                    mode == fairing::BoundaryMode::VirtualVertex) {
+                    expect_refused(m, {}, o, {"flattened every component", "restoring its area"});
+                    continue;
+                }
                 const Result r = expect_result(m, {}, o);
                 if (inv == fairing::OpenInvariant::Area && !r.components.empty()) {
                     EXPECT_NEAR(r.components[0].measure_after, 0.5, 1e-9);

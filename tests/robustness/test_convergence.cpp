@@ -2,7 +2,8 @@
 // SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 // Issue 6, item 2: a solve that cannot converge within the iteration cap is reported with its
 // residual and leaves the mesh unchanged; with accept_unconverged the last iterate is written
-// and a warning carries the residual.
+// and a warning carries the residual. The refusals switch off Options::direct_fallback, which
+// would otherwise solve such a solve of order 1 or 2 directly (the last test here).
 #include "robust.h"
 
 #include <cmath>
@@ -30,6 +31,7 @@ TEST(NonConverging, IterationCapOneIsRefusedWithResidual) {
             Options o = defaults(op);
             o.order = order;
             o.max_iterations = 1;
+            o.direct_fallback = false;
             const std::string msg = expect_refused(
                 m, {}, o, {"did not converge in 1 iterations", "residual", "tolerance 1e-08",
                            "the mesh was left unchanged", "Raise the iteration cap"});
@@ -42,7 +44,7 @@ TEST(NonConverging, AcceptUnconvergedWritesWithWarning) {
     for (Operator op : meshes::kOperators) {
         Options o = defaults(op);
         o.max_iterations = 1;
-        o.accept_unconverged = true;
+        o.accept_unconverged = true;  // the last iterate asked for: no direct solve
         const Result r = expect_result(m, {}, o);
         ASSERT_EQ(r.solves.size(), 1u);
         EXPECT_FALSE(r.solves[0].converged);
@@ -74,6 +76,7 @@ TEST(NonConverging, FailureInALaterStepStillLeavesTheMeshUnchanged) {
     for (const auto& s : ok.solves) most = std::max(most, s.iterations);
     ASSERT_GT(most, 2);
     o.max_iterations = most - 1;
+    o.direct_fallback = false;
     expect_refused(m, {}, o, {"did not converge", "residual"});
 }
 
@@ -82,5 +85,41 @@ TEST(NonConverging, SmoothBoundaryCurveSolveIsReportedToo) {
     Options o = defaults(Operator::ScaleDependent);
     o.boundary = fairing::BoundaryMode::SmoothCurve;
     o.max_iterations = 1;
+    o.direct_fallback = false;
     expect_refused(m, {}, o, {"did not converge", "residual"});
+}
+
+// A surface solve of order 1 or 2 that stops short of the tolerance is solved again directly
+// (Options::direct_fallback): the run succeeds with the result of the converged iterative solves
+// (to their tolerance), and each step's report says how it was solved. Orders 3 and 4 are still
+// refused.
+TEST(NonConverging, StoppedSolveIsSolvedDirectly) {
+    const TriangleMesh m = noisy_sphere(3);
+    for (Operator op : meshes::kOperators)
+        for (int order : {1, 2, 3}) {
+            SCOPED_TRACE(testing::Message() << fairing::to_string(op) << " order " << order);
+            Options o = defaults(op);
+            o.order = order;
+            o.steps = 2;
+            o.preconditioner = fairing::Preconditioner::Jacobi;  // no frozen or Lanczos steps
+            o.freeze_operator = false;
+            const Result converged = expect_result(m, {}, o);
+            o.max_iterations = 1;
+            if (order == 3) {
+                expect_refused(m, {}, o, {"did not converge in 1 iterations"});
+                continue;
+            }
+            const Result r = expect_result(m, {}, o);
+            ASSERT_EQ(r.solves.size(), 2u);
+            for (const fairing::SolveReport& s : r.solves) {
+                EXPECT_TRUE(s.direct);
+                EXPECT_TRUE(s.converged);
+                EXPECT_EQ(s.iterations, 1);
+                EXPECT_LT(s.residual, 1e-12);
+            }
+            EXPECT_TRUE(r.warnings.empty()) << warnings(r);
+            const double size = meshes::bbox_diagonal(m.positions);
+            EXPECT_LT((r.positions - converged.positions).cwiseAbs().maxCoeff(), 1e-6 * size);
+            EXPECT_GT((r.positions - m.positions).cwiseAbs().maxCoeff(), 1e-3 * size);
+        }
 }

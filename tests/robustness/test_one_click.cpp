@@ -100,3 +100,43 @@ TEST(OneClick, BadOpenInputGivesAFiniteResult) {
         for (int i = 0; i < 9; i += 2) EXPECT_TRUE(r.positions.row(i) == m.positions.row(i));
     }
 }
+
+// A flat tetrahedron beside a noisy sphere: the shape of a four-vertex part of libcgal-demo's
+// b9_mesh, whose steps flatten it so that scaling its volume back blew it up (the curvature flow's
+// one-click run moved it by 400 mean edges). No one-click run enlarges it more than twofold; the
+// curvature flow's leaves it exactly as given and says so; every run smooths the sphere with its
+// volume kept. Alone, the tetrahedron is refused.
+TEST(OneClick, FlattenedComponentIsLeftAsGiven) {
+    TriangleMesh sphere = meshes::gaussian_radial_noise(meshes::icosphere(3), 0.02, 11);
+    const double edge = meshes::mean_edge_length(sphere.positions, sphere.triangles);
+    TriangleMesh tetrahedron;
+    tetrahedron.positions.resize(4, 3);
+    tetrahedron.positions << -0.5893, 0.8211, -0.4774, -0.1219, -0.0880, 0.1722, 0.0962,
+        -0.6682, 0.2416, 0.6150, -0.0650, 0.0636;  // about its centroid, mean edge 1.13
+    tetrahedron.positions *= edge / 1.13;
+    tetrahedron.triangles = {{2, 1, 3}, {1, 0, 3}, {2, 0, 1}, {2, 3, 0}};
+    tetrahedron = meshes::translated(tetrahedron, Vec3(3, 0, 0));
+    const TriangleMesh m = meshes::merge(sphere, tetrahedron);
+    const int ns = static_cast<int>(sphere.positions.rows());
+    const double sphere_volume = volume_of(sphere.positions, sphere.triangles);
+    for (Operator op : meshes::kOperators) {
+        SCOPED_TRACE(fairing::to_string(op));
+        const Result r = expect_result(m, {}, one_click(op));
+        EXPECT_LT(meshes::bbox_diagonal(r.positions.bottomRows(4)),
+                  2 * meshes::bbox_diagonal(tetrahedron.positions));
+        EXPECT_GT((r.positions.topRows(ns) - sphere.positions).cwiseAbs().maxCoeff(), 0.1 * edge);
+        EXPECT_NEAR(volume_of(r.positions.topRows(ns), sphere.triangles), sphere_volume,
+                    1e-9 * sphere_volume);
+        ASSERT_EQ(r.components.size(), 2u);
+        if (op != Operator::CurvatureFlow) continue;
+        for (int i = 0; i < 4; ++i)
+            EXPECT_TRUE(r.positions.row(ns + i) == m.positions.row(ns + i)) << "vertex " << i;
+        EXPECT_EQ(r.components[1].restoration, fairing::Restoration::Collapsed);
+        EXPECT_TRUE(has_warning(r, "1 component (4 vertices) was left as given")) << warnings(r);
+    }
+    Options o = one_click(Operator::CurvatureFlow);
+    o.time_step = 22.5;
+    expect_refused(tetrahedron, {}, o,
+                   {"the steps flattened every component that could move",
+                    "the mesh was left unchanged", "use a smaller time step"});
+}

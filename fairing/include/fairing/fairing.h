@@ -181,8 +181,14 @@ struct Options {
     ResidualNorm norm = ResidualNorm::L2;
     int max_iterations = 2000;
     Preconditioner preconditioner = Preconditioner::Automatic;
-    // When the iteration cap is hit: false refuses (the input stays as it was); true accepts the
-    // last iterate and records a warning with the residual reached.
+    // An implicit surface solve of order 1 or 2 that does not converge (stalls, or reaches
+    // max_iterations) on at most 100,000 free vertices is solved again by a sparse LDL^T, whose
+    // residual is rounding's (SolveReport::direct), unless accept_unconverged asks for the last
+    // iterate. Needles that the curvature flow's later steps make can stall CG short of the
+    // tolerance on real scans. false: such a solve is refused as below.
+    bool direct_fallback = true;
+    // When the iteration cap is hit and no direct solve took over: false refuses (the input stays
+    // as it was); true accepts the last iterate and records a warning with the residual reached.
     bool accept_unconverged = false;
     // Threads for the solver's loops on meshes of 50,000 vertices or more (smaller ones always
     // use one): 0 = as many as OpenMP offers (OMP_NUM_THREADS, else the cores), 1 = one.
@@ -212,7 +218,9 @@ struct SolveReport {
     // K, against two for an iteration of an L^2 system).
     int inner_iterations = 0;
     bool factored = false;  // the Factored preconditioner was used
-    bool direct = false;    // solved by a sparse LDL^T (the boundary loops), no iterations
+    // Solved by a sparse LDL^T: the boundary loops always, the surface when its iterative solve
+    // did not converge (Options::direct_fallback; `iterations` then counts that solve's).
+    bool direct = false;
     double residual = 0;   // max over x, y, z of ||A X - b|| / ||b|| in the chosen norm
     bool converged = true;
     // > 0: this one report covers that many steps with a frozen operator, taken at once as a
@@ -228,6 +236,10 @@ enum class Restoration {
     NormalOffset,    // free vertices offset along their normals (VolumeRestoration::NormalOffset,
                      // or the component has fixed vertices)
     Unchanged,       // every vertex of the component is fixed
+    // Left as given: the steps flattened the component (a tetrahedron, a thin plate), so that its
+    // measure became zero or negative, or restoring it would have enlarged the component more
+    // than twofold (Run::restore in fairing.cpp).
+    Collapsed,
 };
 
 struct ComponentReport {
