@@ -19,6 +19,18 @@ if "--peers-from" in args:   # the peers' rows of an earlier run (same meshes, s
     peers_from = args[i + 1]
     del args[i:i + 2]
 *srcs, out_dir = args
+
+
+def peers_run(m):
+    """The run that measured the peers' rows of a run's meta: its own, or the one it took them from
+    (named once, not nested: an --ours-only run of an --ours-only run named the whole chain)."""
+    if "peers_run" in m:
+        return m["peers_run"]
+    marker = " (peers' rows: "
+    if marker in m["command"]:   # extracts written before peers_run: the innermost of the chain
+        return m["command"].rsplit(marker, 1)[1].split(")", 1)[0]
+    return "%s, %s, %.1f min" % (m["command"], m["date"], m["minutes"])
+
 src = srcs[0]
 meta, R = None, []
 for path in srcs + ([peers_from] if peers_from else []):   # several runs (e.g. the full run and an --only run of a bigger mesh) merge
@@ -28,7 +40,8 @@ for path in srcs + ([peers_from] if peers_from else []):   # several runs (e.g. 
         if m_.get("seed", 1) != meta.get("seed", 1):
             sys.exit("denoise_report: the peers' rows (%s) are of noise seed %d, this run's of %d"
                      % (path, m_.get("seed", 1), meta.get("seed", 1)))
-        meta["command"] += " (peers' rows: %s, %s, %.1f min)" % (m_["command"], m_["date"], m_["minutes"])
+        meta["command"] += " (peers' rows: %s)" % peers_run(m_)
+        meta["peers_run"] = peers_run(m_)
         meta["failures"] = meta.get("failures", []) + [x for x in m_.get("failures", [])
                                                        if not x["task"].startswith(("ours", "cli-auto", "invariant"))]
         R += [r for r in lines[1:] if r.get("method", "").startswith(("MeshLab", "CGAL", "OpenMesh"))
