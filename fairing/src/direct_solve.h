@@ -4,8 +4,8 @@
 // installed).
 //
 // The systems are solver.h's, on the free rows f of an operator:
-//   order 1:  A = D - lambda K_ff,                 right-hand side D x_f + lambda K_fc x_c
-//   order 2:  A = D + lambda K_ff M_f^-1 K_ff,     right-hand side D x_f - lambda K_ff M_f^-1 K_fc x_c
+//   order 1:  A = D - lambda K_ff,               b = D x_f + lambda K_fc x_c
+//   order 2:  A = D + lambda K_ff M_f^-1 K_ff,   b = D x_f - lambda K_ff M_f^-1 K_fc x_c
 // (the fixed columns c moved to the right; P zeroes L at fixed rows, so L^2 = L P L). A is
 // symmetric positive definite whenever D > 0, and Eigen's SimplicialLDLT (approximate minimum
 // degree ordering) factors it. A direct solve is backward stable: its residual is rounding's,
