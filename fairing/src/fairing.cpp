@@ -218,6 +218,7 @@ private:
     void leave_as_given(std::size_t c);
     void leave_if_grown(std::size_t c);
     void check_collapses();
+    std::string flattening() const;
     Restoration restore_component(std::size_t c, Positions& x,
                                   const std::vector<double>* shape) const;
     void shape_offset();
@@ -382,9 +383,9 @@ void Run::integrate(const SparseOperator& op, const std::vector<char>& free, dou
     // (direct_solve.h). Needles that the curvature flow's later steps make can keep CG from the
     // tolerance: on libcgal-demo's femur with half an edge of noise the one-click run's fourth
     // step stalled at a residual of 2.8e-7 after 1242 iterations (84 needles) and was refused.
-    const bool may_factor =
-        options_.direct_fallback && !options_.accept_unconverged && options_.order <= 2 &&
-        std::count(free.begin(), free.end(), char(1)) <= kMaxDirectFallbackRows;
+    const bool may_factor = surface && options_.direct_fallback &&
+                            !options_.accept_unconverged && options_.order <= 2 &&
+                            std::count(free.begin(), free.end(), char(1)) <= kMaxDirectFallbackRows;
     Positions before;
     if (may_factor) before = x_;
     SolveStats stats = solve(linear, x_, settings);
@@ -619,12 +620,15 @@ void Run::check_collapses() {
     if (left_as_given_.empty()) return;
     for (int i = 0; i < n_; ++i)
         if (restorable_[i] && !he_.is_isolated(i) && !left_as_given_[i]) return;
-    throw Error(std::string("the steps flattened every component that could move: ") +
-                (largest_growth_ > 0 ? std::string("restoring its ") + grown_measure_ +
-                                           " would have enlarged it " + fold(largest_growth_) +
-                                           "-fold"
-                                     : "its volume or area became zero or negative") +
+    throw Error("the steps flattened every component that could move: " + flattening() +
                 ", so the mesh was left unchanged; use a smaller time step");
+}
+
+// What the steps did to the components left as given (for the warning and the refusal).
+std::string Run::flattening() const {
+    return largest_growth_ > 0 ? std::string("restoring its ") + grown_measure_ +
+                                     " would have enlarged it " + fold(largest_growth_) + "-fold"
+                               : std::string("its volume or area became zero or negative");
 }
 
 // x may hold virtual vertices after the first n_ rows; they are not part of any component and
@@ -1153,11 +1157,7 @@ void Run::warn_about_input() {
         warn(detail::count_of(flattened, "component", "components") + " (" +
              detail::count_of(flattened_vertices, "vertex", "vertices") + ") " +
              (flattened == 1 ? "was" : "were") +
-             " left as given: the steps flattened it, so that " +
-             (largest_growth_ > 0 ? std::string("restoring its ") + grown_measure_ +
-                                        " would have enlarged it " + fold(largest_growth_) +
-                                        "-fold"
-                                  : std::string("its volume or area became zero or negative")) +
+             " left as given: the steps flattened it, so that " + flattening() +
              "; a smaller time step smooths it too");
     if (worst_.massless_vertices > 0)
         warn(detail::count_of(worst_.massless_vertices, "vertex has", "vertices have") +

@@ -3,7 +3,6 @@
 #include "loop_strength.h"
 
 #include "direct_solve.h"
-
 #include "geometry.h"
 
 #include <Eigen/Sparse>

@@ -31,7 +31,6 @@
 #pragma once
 
 #include "fairing/operators.h"
-#include "fairing/solver.h"
 
 #include <functional>
 #include <vector>

@@ -317,7 +317,7 @@ TEST(Boundary, AutomaticLoopStepKeepsAHoleOpen) {
 // vertices, perimeters 0.02 and 0.07 mean edges, its only loops). The loops' risk is lowest at a
 // strong loop step there, where the iterative solve of the loop system stalled on rounding (the
 // dragon's one-click runs were refused: "did not converge in 70 iterations, residual 1.2e-6").
-// The loops are solved directly (loop_strength.h, solve_loops): every one-click run succeeds,
+// The loops are solved directly (direct_solve.h): every one-click run succeeds,
 // and the sliver stays put.
 TEST(Boundary, SliverHoleSmoothsAsACurve) {
     const TriangleMesh sphere = meshes::icosphere(3);

@@ -75,7 +75,7 @@ struct SolveStats {
     bool complex_factor = false;  // solved as Re (M + i sqrt(lambda_dt) K)^-1 (complex_factor.h)
     bool multigrid = false;  // preconditioned by the multigrid V-cycle (src/multigrid.h)
     bool gauss_seidel = false;  // complex solve preconditioned by block Gauss-Seidel
-    bool direct = false;  // solved by a sparse LDL^T (the boundary loops' cyclic bands), no CG
+    bool direct = false;  // solved by a sparse LDL^T (src/direct_solve.h), not by CG
     double residual = 0;  // max over columns of ||A x - b|| / ||b|| on the free rows
     bool converged = false;
 };
