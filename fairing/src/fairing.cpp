@@ -620,8 +620,12 @@ void Run::check_collapses() {
     if (left_as_given_.empty()) return;
     for (int i = 0; i < n_; ++i)
         if (restorable_[i] && !he_.is_isolated(i) && !left_as_given_[i]) return;
+    // An automatic step is named, so that the user knows where "smaller" starts.
     throw Error("the steps flattened every component that could move: " + flattening() +
-                ", so the mesh was left unchanged; use a smaller time step");
+                ", so the mesh was left unchanged; use a smaller time step" +
+                (result_.automatic_time_step
+                     ? " than the automatic one (" + number(time_step_) + ")"
+                     : std::string()));
 }
 
 // What the steps did to the components left as given (for the warning and the refusal).

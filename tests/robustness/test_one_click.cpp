@@ -139,4 +139,8 @@ TEST(OneClick, FlattenedComponentIsLeftAsGiven) {
     expect_refused(tetrahedron, {}, o,
                    {"the steps flattened every component that could move",
                     "the mesh was left unchanged", "use a smaller time step"});
+    // Alone, the one-click run flattens it too; the refusal names the automatic step.
+    expect_refused(tetrahedron, {}, one_click(Operator::CurvatureFlow),
+                   {"the steps flattened every component that could move",
+                    "use a smaller time step than the automatic one ("});
 }
