@@ -1194,7 +1194,8 @@ private:
     };
     // Rows per group of data vertices (restored component k < nc, then those no restoration
     // covers): in proportion to its vertices, at least one for a group that has any. Empty
-    // when there are more groups than a quarter of the rows (they then share all rows).
+    // when there are more groups than a quarter of the rows, or too many small ones for one row
+    // each (they then share all rows).
     static std::vector<int> rows_of(const std::vector<double>& count, double total, int rows) {
         const int groups = static_cast<int>(count.size());
         int nonempty = 0;
@@ -1208,6 +1209,7 @@ private:
             used += width[g];
             if (width[g] > width[largest]) largest = g;
         }
+        if (used > rows) return {};
         width[largest] += rows - used;  // the rounding's rows (at most one per group off)
         return width;
     }
