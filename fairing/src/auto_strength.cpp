@@ -1195,7 +1195,7 @@ private:
         std::vector<int> bucket;  // per vertex, -1 off the data
         std::vector<float> sign;
         // Per row: the restored component whose vertices alone it holds, kPooled for the pool
-        // of the components past the kOwnRows() largest, -1 for the vertices no restoration
+        // of the components past the own_rows() largest, -1 for the vertices no restoration
         // covers (or for all, when the groups overrun the rows; rows_of()).
         std::vector<int> owner;
         std::vector<char> pooled;  // per component: its rows are the pool's
