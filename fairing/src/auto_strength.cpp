@@ -1147,8 +1147,11 @@ private:
         gain = (weighted_beta + (l.total - covered)) / l.total;
         // The pool's rows take its components' mean; rows shared by all, the whole mesh's.
         double pooled_beta = 0, pooled_count = 0;
-        for (int k = 0; k < l.restoration.components; ++k)
-            if (l.pooled[k]) pooled_beta += beta_of[k] * l.count[k], pooled_count += l.count[k];
+        for (int k = 0; k < l.restoration.components; ++k) {
+            if (!l.pooled[k]) continue;
+            pooled_beta += beta_of[k] * l.count[k];
+            pooled_count += l.count[k];
+        }
         pooled_beta = pooled_count > 0 ? pooled_beta / pooled_count : 1.0;
         const double beta_all = covered == l.total ? weighted_beta / covered : 1.0;
         Eigen::VectorXd residual = sketched;
@@ -1210,13 +1213,10 @@ private:
     // 0.05 s, 21 steps and 0.29 s. ManySmallComponentsPoolTheirRows.)
     static int own_rows(int rows) { return std::max(1, rows / 4 - 2); }
     // Rows per group of data vertices: in proportion to its vertices, at least one for a group
-    // that has any. Empty when there are more groups than a quarter of the rows, or too many
-    // small ones for one row each (they then share all rows).
+    // that has any. Empty when the groups' one row each would overrun the rows (they then share
+    // all rows; own_rows() keeps the groups to a quarter of the rows).
     static std::vector<int> rows_of(const std::vector<double>& count, double total, int rows) {
         const int groups = static_cast<int>(count.size());
-        int nonempty = 0;
-        for (double c : count) nonempty += c > 0;
-        if (nonempty > rows / 4) return {};
         std::vector<int> width(groups, 0);
         int used = 0, largest = 0;
         for (int g = 0; g < groups; ++g) {

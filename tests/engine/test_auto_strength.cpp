@@ -415,25 +415,23 @@ TEST(AutoStrength, ManyRestoredComponentsPastTheSketchedOnes) {
 // one-click step at half an edge of noise was 3.16, 1.65x the best fixed step's error; now 0.48,
 // 1.03x). Now it settles after 21 steps, at 1.06x the best fixed step's error here.
 TEST(AutoStrength, EachRestoredComponentScalesItsOwnResidual) {
-    // Per part: its vertices on bones (for the record: the subdivision follows the length), its
-    // length in edges and the extent ratios of its other two axes.
-    const std::vector<std::array<double, 4>> parts = {
-        {25, 2.3, 0.78, 0.73}, {18, 2.1, 0.82, 0.66}, {35, 5.6, 0.35, 0.55},
-        {64, 14.4, 0.35, 0.4}, {75, 12.5, 0.38, 0.4},  {69, 5.8, 0.46, 0.56},
-        {25, 2.1, 0.7, 0.79},  {32, 3.2, 0.65, 0.68}, {75, 15.1, 0.57, 0.3},
-        {69, 6.7, 0.4, 0.48},  {25, 2.4, 0.59, 0.67}, {32, 3.8, 0.66, 0.58},
-        {198, 14.5, 0.67, 0.32}, {116, 9.0, 0.9, 0.56}, {79, 7.2, 0.64, 0.77},
-        {65, 5.8, 0.54, 0.72}, {295, 15.3, 0.74, 0.67}, {182, 10.2, 0.85, 0.88},
-        {301, 18.3, 0.68, 0.53}, {39, 6.9, 0.99, 0.81}, {26, 6.1, 0.92, 0.7},
-        {108, 9.0, 0.66, 0.78}, {75, 13.8, 0.52, 0.36}, {69, 6.3, 0.49, 0.47},
-        {25, 2.2, 0.69, 0.69}, {32, 3.2, 0.54, 0.6}};
+    // Per part: its length in edges and the extent ratios of its other two axes (the
+    // subdivision follows the length, not bones' 18-301 vertices).
+    const std::vector<std::array<double, 3>> parts = {
+        {2.3, 0.78, 0.73}, {2.1, 0.82, 0.66}, {5.6, 0.35, 0.55}, {14.4, 0.35, 0.4},
+        {12.5, 0.38, 0.4}, {5.8, 0.46, 0.56}, {2.1, 0.7, 0.79}, {3.2, 0.65, 0.68},
+        {15.1, 0.57, 0.3}, {6.7, 0.4, 0.48}, {2.4, 0.59, 0.67}, {3.8, 0.66, 0.58},
+        {14.5, 0.67, 0.32}, {9.0, 0.9, 0.56}, {7.2, 0.64, 0.77}, {5.8, 0.54, 0.72},
+        {15.3, 0.74, 0.67}, {10.2, 0.85, 0.88}, {18.3, 0.68, 0.53}, {6.9, 0.99, 0.81},
+        {6.1, 0.92, 0.7}, {9.0, 0.66, 0.78}, {13.8, 0.52, 0.36}, {6.3, 0.49, 0.47},
+        {2.2, 0.69, 0.69}, {3.2, 0.54, 0.6}};
     std::vector<Vec3> centres, axes;
     std::vector<int> first{0};
     TriangleMesh clean;
     double x = 0;
     for (std::size_t k = 0; k < parts.size(); ++k) {
         // The subdivision whose edges come closest to the unit edge at this length.
-        const Vec3 ax = 0.5 * parts[k][1] * Vec3(1.0, parts[k][2], parts[k][3]);
+        const Vec3 ax = 0.5 * parts[k][0] * Vec3(1.0, parts[k][1], parts[k][2]);
         TriangleMesh one;
         double closest = 1e300;
         for (int levels = 0; levels <= 3; ++levels) {
