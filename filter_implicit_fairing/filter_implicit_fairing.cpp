@@ -76,26 +76,28 @@ QString FilterImplicitFairing::filterInfo(fairing_plugin::FilterId id) const
         what = tr("Diffusion with the <b>umbrella operator</b> (eq. 7): each vertex moves towards "
                   "the average of its neighbours. Strong fairing changes the shape most, as "
                   "triangles drift and even out in size: it also regularizes the triangulation. "
-                  "<b>Pick it for noisy scans</b>: of the three it had the lowest error on every "
-                  "scan of the denoising study (e.g. the fandisk at noise 0.25 edge: 0.107 edge, "
-                  "against 0.115 scale-dependent and 0.119 curvature flow), and on a torus "
-                  "(0.032 edge, every other smoother at its best 0.039 or more).");
+                  "<b>Pick it for noisy scans</b>: with its defaults it had the lowest error of "
+                  "the three on every scan of the denoising study (e.g. the fandisk at noise 0.25 "
+                  "edge: 0.109 edge, against 0.119 scale-dependent and 0.128 curvature flow; "
+                  "MeshLab's Taubin Smooth at its best iteration count 0.107), and on a torus "
+                  "(0.032 edge; every other smoother at its best 0.039 or more).");
         break;
     case FP_SCALE_DEPENDENT:
         what = tr("Diffusion with the <b>scale-dependent umbrella operator</b> (Fujiwara, eq. 11; "
                   "neighbours weighted by 1/edge length): stays closer to the original shape and "
                   "almost keeps the triangle sizes. For irregular meshes whose sampling should "
-                  "stay as it is (0.037 edge on a two-density sphere at noise 0.25, between the "
-                  "umbrella's 0.069 and the curvature flow's 0.017).");
+                  "stay as it is (with the defaults, 0.038 edge on a two-density sphere at noise "
+                  "0.25, between the umbrella's 0.069 and the curvature flow's 0.017).");
         break;
     case FP_CURVATURE_FLOW:
         what = tr("<b>Curvature flow</b> (eq. 14, cotangent weights): vertices move along the "
                   "normal by the mean curvature, so they do not slide over the surface and "
                   "spheres stay spheres and flat regions stay flat; the volume the flow takes "
                   "from convex, strongly curved parts goes back there. <b>Pick it when only the "
-                  "shape should change</b>, and for smooth shapes: on the two-density sphere at "
-                  "noise 0.25 edge it reached 0.017 edge (CGAL's smooth_shape at its best: "
-                  "0.027), on a torus 0.035 (0.037 with a uniform volume offset).");
+                  "shape should change</b>, and for smooth shapes: with its defaults, on the "
+                  "two-density sphere at noise 0.25 edge it reached 0.017 edge (CGAL's "
+                  "smooth_shape at its best: 0.027), on a torus 0.035 (0.037 with a uniform "
+                  "volume offset).");
         break;
     }
     return what + tr(
