@@ -1,0 +1,33 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+# SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
+"""From a study report (denoise.md): the automatic rows within 10 % of the oracle, each filter's
+one-click default (L^2, 4 / 2 / 4 steps) within 10 % with its misses, and per mesh the range of
+the best one-click result of ours over the best peer at its best setting.
+  report_summary.py DENOISE.md..."""
+import sys, re, collections
+DEF = {('umbrella','2','4'), ('scale-dep.','2','2'), ('curvature','2','4')}
+for path in sys.argv[1:]:
+    lines = open(path).read().split('\n')
+    allrows = [l for l in lines if '| all rows |' in l]
+    print('==', path); print(allrows[0].split('|')[3].strip() if allrows else '?')
+    # per-row auto table: | mesh | noise | filter | order | steps | oracle | oracle ts | auto | auto ts | ratio | est |
+    d = collections.defaultdict(list)
+    for l in lines:
+        c = [x.strip() for x in l.split('|')]
+        if len(c) == 13 and (c[3], c[4], c[5]) in DEF:
+            try: d[c[3]].append((float(c[10]), c[1], c[2]))
+            except ValueError: pass
+    for f, v in d.items():
+        ok = sum(1 for r in v if r[0] <= 1.10)
+        w = max(v)
+        print('  default %s: %d of %d within 10%%, worst %.3f (%s %s); misses: %s' % (f, ok, len(v), w[0], w[1], w[2],
+              ', '.join('%s %s %.3f' % (r[1], r[2], r[0]) for r in sorted(v, reverse=True) if r[0] > 1.10)))
+    # per case vs peers: ratio column
+    per = collections.defaultdict(list)
+    for l in lines:
+        c = [x.strip() for x in l.split('|')]
+        if len(c) == 14 and re.match(r'^[0-9.]+$', c[11] or ''):
+            per[c[1]].append(float(c[11]))
+    for m, v in per.items():
+        print('  vs best peer %s: %.3f-%.3f' % (m, min(v), max(v)))
