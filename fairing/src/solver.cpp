@@ -591,7 +591,7 @@ constexpr int kJacobiWorthMultigrid = 100;
 // Gauss-Seidel iterations (9.6 s) on the 1.2 M-face bunny with 0.25 edge of isotropic noise
 // (with the noise along the normals: 26 cycles, 4.0 s), 290 cycles (24.2 s) against 221
 // iterations (8.0 s) on the 1 M-face torus, 70 (1.83 s) against 138 (1.47 s) on bunny00 Loop x1
-// (151 k vertices); README, Performance, "Noise in all directions". What tells these meshes
+// (151 k vertices); docs/performance.md, "Noise in all directions". What tells these meshes
 // apart is the share of K's couplings heavier than kHeavyCoupling times the mean: 0.09-0.13 % on
 // three Loop-subdivided scans (bunny, bunny00, armadillo) and the torus with isotropic noise, at
 // most 0.001 % on the same meshes with the noise along the normals. The one-click curvature flow
