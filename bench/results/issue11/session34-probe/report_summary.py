@@ -11,7 +11,8 @@ for path in sys.argv[1:]:
     lines = open(path).read().split('\n')
     allrows = [l for l in lines if '| all rows |' in l]
     print('==', path); print(allrows[0].split('|')[3].strip() if allrows else '?')
-    # per-row auto table: | mesh | noise | filter | order | steps | oracle | oracle ts | auto | auto ts | ratio | est |
+    # the per-row automatic table: | mesh | noise | filter | order | steps | oracle | oracle ts
+    # | auto | auto ts | ratio | estimate |
     d = collections.defaultdict(list)
     for l in lines:
         c = [x.strip() for x in l.split('|')]
@@ -21,8 +22,10 @@ for path in sys.argv[1:]:
     for f, v in d.items():
         ok = sum(1 for r in v if r[0] <= 1.10)
         w = max(v)
-        print('  default %s: %d of %d within 10%%, worst %.3f (%s %s); misses: %s' % (f, ok, len(v), w[0], w[1], w[2],
-              ', '.join('%s %s %.3f' % (r[1], r[2], r[0]) for r in sorted(v, reverse=True) if r[0] > 1.10)))
+        misses = ', '.join('%s %s %.3f' % (r[1], r[2], r[0])
+                           for r in sorted(v, reverse=True) if r[0] > 1.10)
+        print('  default %s: %d of %d within 10%%, worst %.3f (%s %s); misses: %s'
+              % (f, ok, len(v), w[0], w[1], w[2], misses))
     # per case vs peers: ratio column
     per = collections.defaultdict(list)
     for l in lines:
