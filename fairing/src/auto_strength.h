@@ -63,12 +63,13 @@
 //   Monte-Carlo divergence perturbs the data and builds the same mean at the perturbed data.
 //   The mean overstates what strong steps cost on smooth shapes, where the risk is flat about its
 //   minimum: for several first-order steps the choice is the strongest step whose risk lies
-//   within one standard error of the minimum (Breiman et al.'s rule, auto_strength.cpp, choose);
-//   L^2 steps keep the minimizer. For the curvature flow's L^2 steps the two halves of the risk
-//   are split: the residual (what the steps do to the shape) comes from the later steps'
-//   operator alone, since their smoother weights undo the damage the first step's noisy ones do
-//   to a smooth shape; the divergence (how the steps respond to the noise) from the mean
-//   operator, whose first share carries the weights' dependence on the noise. One more
+//   within one standard error of the minimum (Breiman et al.'s rule, auto_strength.cpp, choose),
+//   and so for the curvature flow's L^2 steps below; other L^2 steps keep the minimizer. For the
+//   curvature flow's L^2 steps the two halves of the risk are split: the residual (what the
+//   steps do to the shape) comes from the later steps' operator alone, since their smoother
+//   weights undo the damage the first step's noisy ones do to a smooth shape; the divergence
+//   (how the steps respond to the noise) from the mean operator, whose first share carries the
+//   weights' dependence on the noise. One more
 //   Lanczos process (the movement on the later operator, with its own sketch) steps beside the
 //   other two in their pass over the operator's pattern and their sketch's pass, as many steps
 //   as they take, its weights formed from the mean's and the first step's: on the 1 M-face

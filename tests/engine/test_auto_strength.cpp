@@ -560,18 +560,38 @@ TEST(AutoStrength, SeveralFirstOrderStepsTakeTheStrongestStepWithinTheRiskError)
 // geometric mean, 1.226 at worst (1.022 and 1.070 when the later steps' residual came in; 1.034
 // and 1.065 before session 27's re-judged risk curve, 1.026 and 1.030 after it; 1.012 and 1.017
 // since the search also waits for the later steps' risk to settle, auto_strength.cpp,
-// kLaterRuleSteps: over eight draws 1.042 and 1.123 before, 1.027 and 1.087 with it). With
-// *uniform* radial noise of the same deviation the noise estimate runs 10-14 % high (its median
-// absolute deviation assumes Gaussian noise) and the choice goes 1.5-1.8x too strong (1.095 /
-// 1.178): auto_strength.h, "Limits".
+// kLaterRuleSteps: over eight draws 1.042 and 1.123 before, 1.027 and 1.087 with it). Since
+// these steps take the strongest step within one standard error of the minimum risk
+// (auto_strength.cpp, choose; session 35), 1.026 and 1.079 on these three draws: the rule moved
+// two of them past their best step. It gains where the choice was weak, which it was on most of
+// the study's meshes (auto-gap.md, section 35: over the study's three seeds 1.035 -> 1.025 in
+// geometric mean; on eight other draws of this sphere, bench's noise, 1.052 / 1.238 -> 1.046 /
+// 1.147). With *uniform* radial noise of the same deviation the noise estimate runs 10-14 % high
+// (its median absolute deviation assumes Gaussian noise) and the choice goes 1.5-1.8x too strong
+// (1.095 / 1.178): auto_strength.h, "Limits".
 TEST(AutoStrength, CurvatureFlowStepsTakeTheirResidualFromTheLaterSteps) {
     const auto noisy = [](const TriangleMesh& clean, double h, int draw) {
         return meshes::gaussian_radial_noise(clean, 0.5 * h, 60 + draw);
     };
     const Ratios r = automatic_against_best_on_two_density_sphere(
         4, 3, noisy, automatic(Operator::CurvatureFlow, 2, 4), 100, 1e5);
-    EXPECT_LT(r.gmean, 1.02);
-    EXPECT_LT(r.worst, 1.025);
+    EXPECT_LT(r.gmean, 1.04);
+    EXPECT_LT(r.worst, 1.1);
+}
+
+// The same steps take the strongest step within one standard error of the minimum risk
+// (auto_strength.cpp, choose): their minimizer was weaker than the best fixed step on most of the
+// study's meshes. The 3 k-face two-density sphere with a tenth of an edge of Gaussian noise, four
+// draws, against the best of a sweep 1.25x apart: 1.034 in geometric mean, 1.049 at worst; with
+// the minimizer 1.096 and 1.146 (auto-gap.md, section 35).
+TEST(AutoStrength, CurvatureFlowStepsTakeTheStrongestStepWithinTheRiskError) {
+    const auto noisy = [](const TriangleMesh& clean, double h, int draw) {
+        return meshes::gaussian_radial_noise(clean, 0.1 * h, 80 + draw);
+    };
+    const Ratios r = automatic_against_best_on_two_density_sphere(
+        3, 4, noisy, automatic(Operator::CurvatureFlow, 2, 4), 100, 1e5);
+    EXPECT_LT(r.gmean, 1.04);
+    EXPECT_LT(r.worst, 1.1);
 }
 
 // Soft weights multiply lambda row by row, so weights of c everywhere are the unweighted filter
