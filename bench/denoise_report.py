@@ -52,6 +52,8 @@ for path in srcs + ([peers_from] if peers_from else []):   # several runs (e.g. 
     else:
         meta["meshes"] += [x for x in m_["meshes"] if x["name"] not in {y["name"] for y in meta["meshes"]}]
         meta["command"] += " + " + m_["command"]
+        if m_.get("git") and m_["git"] not in meta["git"].split(" + "):  # e.g. --auto-from's rows
+            meta["git"] += " + " + m_["git"]
         meta["minutes"] += m_["minutes"]
         meta["failures"] = meta.get("failures", []) + m_.get("failures", [])
     R += lines[1:]
