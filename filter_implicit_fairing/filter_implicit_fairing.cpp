@@ -78,7 +78,7 @@ QString FilterImplicitFairing::filterInfo(fairing_plugin::FilterId id) const
                   "triangles drift and even out in size: it also regularizes the triangulation. "
                   "<b>Pick it for noisy scans</b>: with its defaults it had the lowest error of "
                   "the three on every scan of the denoising study (e.g. the fandisk at noise 0.25 "
-                  "edge: 0.109 edge, against 0.119 scale-dependent and 0.128 curvature flow; "
+                  "edge: 0.109 edge, against 0.119 scale-dependent and 0.126 curvature flow; "
                   "MeshLab's Taubin Smooth at its best iteration count 0.107), and on a torus "
                   "(0.032 edge; every other smoother at its best 0.039 or more).");
         break;
@@ -96,7 +96,7 @@ QString FilterImplicitFairing::filterInfo(fairing_plugin::FilterId id) const
                   "from convex, strongly curved parts goes back there. <b>Pick it when only the "
                   "shape should change</b>, and for smooth shapes: with its defaults, on the "
                   "two-density sphere at noise 0.25 edge it reached 0.017 edge (CGAL's "
-                  "smooth_shape at its best: 0.027), on a torus 0.035 (0.037 with a uniform "
+                  "smooth_shape at its best: 0.027), on a torus 0.033 (0.037 with a uniform "
                   "volume offset).");
         break;
     }
