@@ -96,6 +96,17 @@ Ratios automatic_against_best_on_two_density_sphere(int levels, int draws, const
         draws, [&](int draw) { return noisy(clean, h, draw); }, o, from, to);
 }
 
+// The curvature flow's default (L^2, four steps) on the two-density sphere of `levels` with
+// Gaussian noise of `noise` mean edges along the normals (draws seeded from `seed`), against the
+// best fixed step from 100 to 1e5.
+Ratios curvature_default_on_two_density_sphere(int levels, int draws, double noise, int seed) {
+    const auto noisy = [=](const TriangleMesh& clean, double h, int draw) {
+        return meshes::gaussian_radial_noise(clean, noise * h, seed + draw);
+    };
+    return automatic_against_best_on_two_density_sphere(
+        levels, draws, noisy, automatic(Operator::CurvatureFlow, 2, 4), 100, 1e5);
+}
+
 }  // namespace
 
 // The noise estimate (1.4826 x MAD of the normal bi-Laplacian over its stencil norm) recovers the
@@ -570,11 +581,7 @@ TEST(AutoStrength, SeveralFirstOrderStepsTakeTheStrongestStepWithinTheRiskError)
 // (its median absolute deviation assumes Gaussian noise) and the choice goes 1.5-1.8x too strong
 // (1.095 / 1.178): auto_strength.h, "Limits".
 TEST(AutoStrength, CurvatureFlowStepsTakeTheirResidualFromTheLaterSteps) {
-    const auto noisy = [](const TriangleMesh& clean, double h, int draw) {
-        return meshes::gaussian_radial_noise(clean, 0.5 * h, 60 + draw);
-    };
-    const Ratios r = automatic_against_best_on_two_density_sphere(
-        4, 3, noisy, automatic(Operator::CurvatureFlow, 2, 4), 100, 1e5);
+    const Ratios r = curvature_default_on_two_density_sphere(4, 3, 0.5, 60);
     EXPECT_LT(r.gmean, 1.04);
     EXPECT_LT(r.worst, 1.1);
 }
@@ -585,11 +592,7 @@ TEST(AutoStrength, CurvatureFlowStepsTakeTheirResidualFromTheLaterSteps) {
 // draws, against the best of a sweep 1.25x apart: 1.034 in geometric mean, 1.049 at worst; with
 // the minimizer 1.096 and 1.146 (auto-gap.md, section 35).
 TEST(AutoStrength, CurvatureFlowStepsTakeTheStrongestStepWithinTheRiskError) {
-    const auto noisy = [](const TriangleMesh& clean, double h, int draw) {
-        return meshes::gaussian_radial_noise(clean, 0.1 * h, 80 + draw);
-    };
-    const Ratios r = automatic_against_best_on_two_density_sphere(
-        3, 4, noisy, automatic(Operator::CurvatureFlow, 2, 4), 100, 1e5);
+    const Ratios r = curvature_default_on_two_density_sphere(3, 4, 0.1, 80);
     EXPECT_LT(r.gmean, 1.04);
     EXPECT_LT(r.worst, 1.1);
 }
