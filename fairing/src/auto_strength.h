@@ -64,7 +64,9 @@
 //   The mean overstates what strong steps cost on smooth shapes, where the risk is flat about its
 //   minimum: for several first-order steps the choice is the strongest step whose risk lies
 //   within one standard error of the minimum (Breiman et al.'s rule, auto_strength.cpp, choose),
-//   and so for the curvature flow's L^2 steps below; other L^2 steps keep the minimizer. For the
+//   and so for the curvature flow's L^2 steps below; the scale-dependent L^2 steps keep the
+//   minimizer. (The umbrella takes the rule too: its risk is the error along the normals, whose
+//   best step on featured and detailed scans is weaker than the distance to the surface's.) For the
 //   curvature flow's L^2 steps the two halves of the risk are split: the residual (what the
 //   steps do to the shape) comes from the later steps' operator alone, since their smoother
 //   weights undo the damage the first step's noisy ones do to a smooth shape; the divergence
