@@ -78,16 +78,16 @@ QString FilterImplicitFairing::filterInfo(fairing_plugin::FilterId id) const
                   "triangles drift and even out in size: it also regularizes the triangulation. "
                   "<b>Pick it for noisy scans</b>: with its defaults it had the lowest error of "
                   "the three on every scan of the denoising study (e.g. the fandisk at noise 0.25 "
-                  "edge: 0.109 edge, against 0.119 scale-dependent and 0.126 curvature flow; "
-                  "MeshLab's Taubin Smooth at its best iteration count 0.107), and on a torus "
-                  "(0.032 edge; every other smoother at its best 0.039 or more).");
+                  "edge: 0.108 edge, against 0.119 scale-dependent and 0.126 curvature flow; "
+                  "MeshLab's Taubin Smooth at its best iteration count 0.107), and on a torus it "
+                  "beat every other smoother at its best (0.033 edge against 0.039 or more).");
         break;
     case FP_SCALE_DEPENDENT:
         what = tr("Diffusion with the <b>scale-dependent umbrella operator</b> (Fujiwara, eq. 11; "
                   "neighbours weighted by 1/edge length): stays closer to the original shape and "
                   "almost keeps the triangle sizes. For irregular meshes whose sampling should "
                   "stay as it is (with the defaults, 0.038 edge on a two-density sphere at noise "
-                  "0.25, between the umbrella's 0.069 and the curvature flow's 0.017).");
+                  "0.25, between the umbrella's 0.071 and the curvature flow's 0.017).");
         break;
     case FP_CURVATURE_FLOW:
         what = tr("<b>Curvature flow</b> (eq. 14, cotangent weights): vertices move along the "
