@@ -66,8 +66,9 @@ double best_fixed_step_error(const TriangleMesh& m, const fairing::Constraints& 
     return best;
 }
 
-// Over `draws` noisy spheres noisy(draw): the automatic choice's sphere error against the best
-// fixed step's (time steps from, from * 1.25, ... below `to`), geometric mean and worst.
+// Over `draws` noisy meshes noisy(draw): the automatic choice's error (`error`, the sphere's when
+// not given) against the best fixed step's (time steps from, from * 1.25, ... below `to`),
+// geometric mean and worst.
 struct Ratios {
     double gmean = 1, worst = 0;
 };
