@@ -91,11 +91,12 @@
 // noise: 1.5-1.8x the best fixed step, 1.04-1.18x its error). A trimmed second moment (within
 // three such deviations) is right for both, but made the scans' choices worse (the umbrella's
 // L^2 x4 worst case 1.038 -> 1.059 of the best error; auto-gap.md, section 15): not used.
-// Several first-order steps place the restoration's switch to scaling with a margin for the later
-// steps' larger losses (Sketch::step_change); where the steps lose evenly it stops the choice
-// short (a 13 k-face sphere at a quarter edge, four curvature steps: 1.12x the best error), and
-// on a torus at 0.1 edge the model's risk is lowest at 1.4x the best step (1.04-1.14x its error
-// on three noise draws; auto-gap.md, section 26).
+// Several first-order steps and the curvature flow's L^2 steps place the restoration's switch to
+// scaling per step, with a margin for the later steps' larger losses (Sketch::step_change);
+// where the steps lose evenly it stops the choice short (a 13 k-face sphere at a quarter edge,
+// four first-order curvature steps: 1.12x the best error), and on a torus at 0.1 edge the
+// model's risk is lowest at 1.4x the best step (1.04-1.14x its error on three noise draws;
+// auto-gap.md, sections 26 and 37).
 //
 // Conventions: lambda is the dimensionless time step of Options::time_step (C is scaled by the
 // operator's length unit); rows at or past `data_vertices` (virtual vertices) move with the
@@ -135,7 +136,8 @@ struct StrengthProblem {
     std::vector<char> offset;
     // How many restorations mode 2's kMaxOffsetChange applies to one by one: fair() restores
     // after every step when the steps recompute the operator, else once after the last. fair()
-    // sets the steps for first-order steps only (auto-gap.md section 26); 1: the total.
+    // sets the steps for first-order steps and the curvature flow's L^2 steps (auto-gap.md
+    // sections 26 and 37); 1: the total.
     int restorations = 1;
     // Per restored component, as offset: nonzero when fair() translates it after the steps by
     // the least-squares translation of its normal displacement (Options::cancel_drift); the
