@@ -277,8 +277,9 @@ inline TriangleMesh noisy_open_grid(int n, double boundary_noise, double z_noise
     return m;
 }
 
-// Closed box [0,sx]x[0,sy]x[0,sz], every side an n x n grid (shared edge vertices), outward.
-inline TriangleMesh box(int n, double sx = 1.0, double sy = 1.0, double sz = 1.0) {
+// Closed box [0,size.x]x[0,size.y]x[0,size.z], cells[a] cells along axis a (shared edge
+// vertices), outward.
+inline TriangleMesh box_cells(const std::array<int, 3>& cells, const Vec3& size) {
     TriangleMesh m;
     std::map<std::array<int, 3>, int> index;
     std::vector<Vec3> pts;
@@ -287,19 +288,22 @@ inline TriangleMesh box(int n, double sx = 1.0, double sy = 1.0, double sz = 1.0
         if (it != index.end()) return it->second;
         const int id = static_cast<int>(pts.size());
         index[l] = id;
-        pts.push_back(Vec3(sx * l[0] / n, sy * l[1] / n, sz * l[2] / n));
+        Vec3 p;
+        for (int a = 0; a < 3; ++a) p(a) = size(a) * l[a] / cells[a];
+        pts.push_back(p);
         return id;
     };
-    // Each side: fixed axis `a` at level 0 or n, (b, c) spanning it with b x c = outward normal.
+    // Each side: fixed axis `a` at level 0 or cells[a], (b, c) spanning it with b x c = outward
+    // normal.
     for (int a = 0; a < 3; ++a) {
         for (int side = 0; side < 2; ++side) {
             int b = (a + 1) % 3, c = (a + 2) % 3;  // e_b x e_c = +e_a
             if (side == 0) std::swap(b, c);         // -e_a
-            for (int i = 0; i < n; ++i) {
-                for (int j = 0; j < n; ++j) {
+            for (int i = 0; i < cells[b]; ++i) {
+                for (int j = 0; j < cells[c]; ++j) {
                     auto lattice = [&](int di, int dj) {
                         std::array<int, 3> l{};
-                        l[a] = side * n;
+                        l[a] = side * cells[a];
                         l[b] = i + di;
                         l[c] = j + dj;
                         return vertex(l);
@@ -315,6 +319,11 @@ inline TriangleMesh box(int n, double sx = 1.0, double sy = 1.0, double sz = 1.0
     m.positions.resize(static_cast<int>(pts.size()), 3);
     for (int i = 0; i < static_cast<int>(pts.size()); ++i) set_row(m.positions, i, pts[i]);
     return m;
+}
+
+// Closed box [0,sx]x[0,sy]x[0,sz], every side an n x n grid (shared edge vertices), outward.
+inline TriangleMesh box(int n, double sx = 1.0, double sy = 1.0, double sz = 1.0) {
+    return box_cells({{n, n, n}}, Vec3(sx, sy, sz));
 }
 
 // Disjoint union: b's vertices come after a's.
