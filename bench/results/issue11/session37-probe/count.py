@@ -1,15 +1,11 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: GPL-3.0-or-later
 # SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
-import json, sys, collections
+"""Automatic rows within 10 % of the oracle per filter, and the worst: count.py EXTRACT..."""
+import sys, collections
+from cmp_auto import load
 for f in sys.argv[1:]:
-    rows=[json.loads(l) for l in open(f)][1:]
-    auto={}; fixed={}
-    for r in rows:
-        if r.get('method')!='ours' or 'rms' not in r or r.get('kind') not in ('auto','fixed'): continue
-        k=(r['mesh'],r['noise'],r['op'],r['order'],r['steps'])
-        if r['kind']=='auto': auto[k]=r['rms']
-        else: fixed[k]=min(fixed.get(k,9),r['rms'])
+    auto, fixed = load(f)
     c=collections.Counter(); t=collections.Counter(); worst=collections.defaultdict(lambda:(0,None))
     for k,a in auto.items():
         if k not in fixed: continue
