@@ -4,17 +4,19 @@
 """Denoising study of issue 11 (bench/denoise.sh; bench/README.md, "Denoising study").
 
 For every mesh and noise case, in one run: each of our filters (umbrella, scale-dependent,
-curvature flow) x order 1|2 x steps 1..4 at the best time step of a log-scale search (the
-"oracle", fairing-denoise-tool sweep, in-process fair()), the automatic strength when the engine
-and the CLI have it, and each peer at its own best setting: MeshLab 2020.09's Taubin, Laplacian
-(cotangent and uniform), HC Laplacian, Two Step, ScaleDependent Laplacian (through
-meshlab_filter_timer --checkpoints: repeated applications, each count evaluated), CGAL
+curvature flow) x order 1|2 x steps 1..4 (and with L^2 the filter's one-click count, the
+umbrella's 8) at the best time step of a log-scale search (the "oracle", fairing-denoise-tool
+sweep, in-process fair()), the automatic strength when the engine and the CLI have it, and
+each peer at its own best setting: MeshLab 2020.09's Taubin, Laplacian (cotangent and uniform),
+HC Laplacian, Two Step, ScaleDependent Laplacian (through meshlab_filter_timer --checkpoints:
+repeated applications, each count evaluated), CGAL
 smooth_shape (cgal_denoise: log search over its time, 1 and 3 iterations) and OpenMesh's Jacobi
 Laplace smoother C0 / C1 (openmesh_denoise). Error: RMS distance of the vertices to the true
 surface in mean edges (common/denoise_shapes.h). Raw rows: denoise.jsonl; tables and plots:
 denoise_report.py.
 """
 from cgal_demo import cgal_demo_off
+from one_click import ONE_CLICK_STEPS
 import argparse, collections, concurrent.futures as cf, json, math, os, platform, re, subprocess, sys, time
 
 p = argparse.ArgumentParser()
@@ -36,9 +38,28 @@ p.add_argument("--auto-from", default="",
                help="only the automatic strength (every filter, order and steps) on the meshes of an "
                     "earlier run's full rows, plus one run at that run's oracle time step (engine check); "
                     "'none': no earlier run (one run at the chosen time step instead)")
+p.add_argument("--add", default="",
+               help="only these settings of our filters, comma-separated OP:ORDER:STEPS "
+                    "(e.g. umbrella:2:8), each a sweep and the automatic choice, and the CLI's "
+                    "one-click rows, merged onto --onto")
+p.add_argument("--onto", default="",
+               help="with --add: the extract of an earlier run of the same meshes and seed")
 p.add_argument("--ours-only", action="store_true",
                help="only our filters (the peers' rows then come from an earlier run: denoise_report.py --peers-from)")
 a = p.parse_args()
+ADD = collections.defaultdict(list)   # (op, order) -> steps, from --add
+for setting in filter(None, a.add.split(",")):
+    try:
+        op_, order_, steps_ = setting.split(":")
+        ADD[(op_, int(order_))].append(int(steps_))
+    except ValueError:
+        sys.exit("denoise: --add takes OP:ORDER:STEPS,... (e.g. umbrella:2:8), not %r" % setting)
+    if (op_ not in ("umbrella", "scale-dependent", "curvature") or not 1 <= int(order_) <= 4
+            or int(steps_) < 1):
+        sys.exit("denoise: --add: OP is umbrella, scale-dependent or curvature, ORDER 1-4, "
+                 "STEPS >= 1: %r" % setting)
+if bool(ADD) != bool(a.onto) or (ADD and (a.auto_from or a.ours_only)):
+    sys.exit("denoise: --add needs --onto (and neither --auto-from nor --ours-only)")
 root, build, cache = a.root, a.build, a.cache
 B = os.path.join(build, "bench", "bin")
 DT = os.path.join(B, "fairing-denoise-tool")
@@ -193,14 +214,19 @@ def base(m, c):
 ALL_KIND = [(n, k) for n, k, *_ in ALL]
 
 
-def steps_for(m):
-    """All of 1..4 on meshes up to 12 k faces; 1, 2 and 4 above (time)."""
-    return [1, 2, 3, 4] if m["info"]["faces"] <= 12000 else [1, 2, 4]
+def steps_for(m, op, order):
+    """All of 1..4 on meshes up to 12 k faces; 1, 2 and 4 above (time); and the filter's
+    one-click count with L^2 (the umbrella's 8)."""
+    steps = [1, 2, 3, 4] if m["info"]["faces"] <= 12000 else [1, 2, 4]
+    one_click = ONE_CLICK_STEPS[op]
+    return steps + ([one_click] if order == 2 and one_click not in steps else [])
 
 
-def ours_task(m, c, op, order):
-    rows, best1 = [], None
-    for steps in steps_for(m):
+def ours_task(m, c, op, order, only_steps=None, best1=None):
+    """The sweep and the automatic choice of every steps count (only_steps: those alone; best1:
+    the one-step oracle's time step that starts their searches, else the first sweep's)."""
+    rows = []
+    for steps in only_steps or steps_for(m, op, order):
         x0 = X0[(op, order)] if best1 is None else best1 / steps
         out = run([DT, "sweep", c["noisy"], m["clean"], m["truth"], op, str(order), str(steps), repr(x0), "--auto"],
                   env=dict(os.environ, OMP_NUM_THREADS="1")).stdout
@@ -356,30 +382,53 @@ def cost_rows_on(name, make, truth, auto_cli, auto_tool):
     return rows
 
 
-def auto_from_tasks(meshes):
-    """--auto-from: the automatic strength against the oracles of an earlier run (same seeded
-    inputs); each task also reruns the oracle's time step with this engine, so an engine change
-    that moved the explicit results shows (the report keeps the better of the two)."""
+def earlier_oracles(path):
+    """The best fixed row of every (mesh, noise, op, order, steps) in an earlier run's rows (its
+    extract will do), which must hold the same noise draw as this run."""
     best = {}
-    for line in (open(a.auto_from) if a.auto_from != "none" else []):
+    for line in open(path):
         r = json.loads(line)
         if "meta" in r and r["meta"].get("seed", 1) != a.seed:
             sys.exit("denoise: %s holds the oracles of noise seed %d, this run draws seed %d"
-                     % (a.auto_from, r["meta"].get("seed", 1), a.seed))
+                     % (path, r["meta"].get("seed", 1), a.seed))
         if r.get("method") == "ours" and r.get("kind") == "fixed" and r.get("rms") is not None:
             k = (r["mesh"], r["noise"], r["op"], r["order"], r["steps"])
             if k not in best or r["rms"] < best[k]["rms"]:
                 best[k] = r
+    return best
+
+
+def auto_from_tasks(meshes):
+    """--auto-from: the automatic strength against the oracles of an earlier run (same seeded
+    inputs); each task also reruns the oracle's time step with this engine, so an engine change
+    that moved the explicit results shows (the report keeps the better of the two)."""
+    best = earlier_oracles(a.auto_from) if a.auto_from != "none" else {}
     tasks = []
     for m in meshes:
         for c in m["cases"]:
             for op in OPS:
                 for order in (1, 2):
-                    for steps in steps_for(m):
+                    for steps in steps_for(m, op, order):
                         o = best.get((m["name"], c["noise"], op, order, steps))
                         tasks.append(("auto %s %s %s" % (m["name"], c["noise"], op),
                                       lambda m=m, c=c, op=op, order=order, steps=steps, ts=o["time_step"] if o else None:
                                       auto_task(m, c, op, order, steps, ts)))
+    return tasks
+
+
+def add_tasks(meshes):
+    """--add: the sweep and the automatic choice of these settings alone, each search started
+    from the one-step oracle of the run it is added onto (--onto)."""
+    best = earlier_oracles(a.onto)
+    tasks = []
+    for m in meshes:
+        for c in m["cases"]:
+            for (op, order), steps in sorted(ADD.items()):
+                one = best.get((m["name"], c["noise"], op, order, 1))
+                ts = one["time_step"] if one else None
+                tasks.append(("ours %s %s %s L%d" % (m["name"], c["noise"], op, order),
+                              lambda m=m, c=c, op=op, order=order, steps=steps, ts=ts:
+                              ours_task(m, c, op, order, only_steps=steps, best1=ts)))
     return tasks
 
 
@@ -433,6 +482,8 @@ def main():
                                       invariant_task(m, op, order, steps, ts)))
     if a.auto_from:
         tasks = auto_from_tasks(meshes) + [t for t in tasks if t[0].startswith(("invariant", "cli-auto"))]
+    elif ADD:
+        tasks = add_tasks(meshes) + [t for t in tasks if t[0] == "cli-auto"]
     log("%d tasks on %d meshes, %d parallel jobs" % (len(tasks), len(meshes), a.jobs))
     rows, failures, spent = [], [], collections.Counter()
 
@@ -453,19 +504,22 @@ def main():
                 log("FAILED %s: %s" % (futs[fu], str(e)[:300]))
             if (i + 1) % 20 == 0:
                 log("%d/%d tasks done" % (i + 1, len(tasks)))
-    if not a.no_cost and not a.quick and not only:
+    if not a.no_cost and not a.quick and not only and not ADD:
         log("cost rows on %s" % ", ".join(m[0] for m in COST_MESHES))
         rows.extend(cost_rows(auto_cli, auto_tool))
     # An --only run keeps its own file: it must not replace the full run's rows (--peers-from).
     rows_path = os.path.join(runs_dir, "denoise-%s%s%s%s%s.jsonl" % (
         "only-" + "+".join(only) if only else "full", "-quick" if a.quick else "",
-        "-ours" if a.ours_only else "-auto" if a.auto_from else "", "" if a.seed == 1 else "-s%d" % a.seed,
+        "-ours" if a.ours_only else "-auto" if a.auto_from else
+        "-add-" + a.add.replace(":", "_").replace(",", "+") if ADD else "",
+        "" if a.seed == 1 else "-s%d" % a.seed,
         "-noise-" + "+".join(t for t, _, _ in NOISES) if a.noise else ""))
     meta = dict(date=time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), machine=platform.node(),
                 cores=os.cpu_count(), load_after=os.getloadavg(), minutes=(time.time() - started) / 60,
                 git=git_at_start,
                 command="bench/denoise.sh" + (" --quick" if a.quick else "") + (" --only " + a.only if only else "")
                         + (" --ours-only" if a.ours_only else "") + (" --auto-from ..." if a.auto_from else "")
+                        + (" --add %s --onto ..." % a.add if ADD else "")
                         + (" --seed %d" % a.seed if a.seed != 1 else "") + (" --noise " + a.noise if a.noise else ""),
                 seed=a.seed,
                 auto_cli=auto_cli, auto_engine=auto_tool, task_minutes={k: round(v / 60, 2) for k, v in spent.items()}, meshes=[dict(name=m["name"], kind=dict(ALL_KIND)[m["name"]], truth=m["truth"], **m["info"])
@@ -478,7 +532,8 @@ def main():
             f.write(json.dumps(r, ensure_ascii=False) + "\n")
     log("%d rows in %s; %d failures" % (len(rows), rows_path, len(failures)))
     subprocess.run([sys.executable, os.path.join(root, "bench", "denoise_report.py")]
-                   + ([a.auto_from] if a.auto_from and a.auto_from != "none" else []) + [rows_path, results]
+                   + ([a.auto_from] if a.auto_from and a.auto_from != "none" else
+                      [a.onto] if ADD else []) + [rows_path, results]
                    + (["--peers-from", a.peers_from] if a.peers_from else []), check=True)
 
 

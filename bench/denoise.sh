@@ -7,7 +7,7 @@
 #
 #   bench/denoise.sh [--quick] [--only NAMES] [--results DIR] [--jobs N] [--seed N] [--build DIR]
 #                    [--no-install] [--no-cost] [--ours-only --peers-from RUN.jsonl]
-#                    [--auto-from RUN.jsonl] [--noise CASES]
+#                    [--auto-from RUN.jsonl] [--add SETTINGS --onto EXTRACT] [--noise CASES]
 #
 #   --quick        4 small meshes (sphere 3k, flat patch 3k, elephant 6k, fandisk 13k), no cost row
 #   --only NAMES   only these meshes, comma-separated (names: bench/denoise.py, ALL)
@@ -24,6 +24,11 @@
 #   --no-cost      skip the >= 1 M-face cost rows (Loop x2 bunny, 1 M-face torus)
 #   --auto-from F  only the automatic strength (and the invariants, the cost row) against the
 #                  oracles in F, the full rows of an earlier run (engine gained auto since)
+#   --add S        only these settings of our filters (OP:ORDER:STEPS,..., e.g. umbrella:2:8), each
+#                  a sweep and the automatic choice, and the CLI's one-click rows (the defaults'),
+#                  no cost rows; the report merges them onto
+#   --onto F       the extract (RESULTS_DIR/denoise.jsonl) of an earlier run of the same meshes and
+#                  seed: copy it out of RESULTS_DIR first, the report rewrites that file
 #   --ours-only    run only our filters (engine changed, peers did not) and take the peers' rows
 #   --peers-from F from F, the full rows of an earlier run on the same meshes
 #                  ($FAIRING_CACHE/denoise-runs/denoise-full[-quick].jsonl; seeded inputs, so equal)
@@ -39,15 +44,15 @@ while [ $# -gt 0 ]; do
   case "$1" in
     --no-install) install=0 ;;
     --quick|--no-cost|--ours-only) args+=("$1") ;;
-    --peers-from|--auto-from) [ $# -ge 2 ] || { echo "denoise.sh: $1 needs a value" >&2; exit 2; }
+    --peers-from|--auto-from|--onto) [ $# -ge 2 ] || { echo "denoise.sh: $1 needs a value" >&2; exit 2; }
       args+=("$1" "$(cd "$(dirname "$2")" && pwd)/$(basename "$2")"); shift ;;
-    --only|--jobs|--seed|--noise) [ $# -ge 2 ] || { echo "denoise.sh: $1 needs a value" >&2; exit 2; }
+    --only|--jobs|--seed|--noise|--add) [ $# -ge 2 ] || { echo "denoise.sh: $1 needs a value" >&2; exit 2; }
       args+=("$1" "$2"); shift ;;
     --results) [ $# -ge 2 ] || { echo "denoise.sh: $1 needs a value" >&2; exit 2; }
       mkdir -p "$2"; args+=(--results "$(cd "$2" && pwd)"); shift ;;
     --build) [ $# -ge 2 ] || { echo "denoise.sh: $1 needs a value" >&2; exit 2; }
       bb=$2; shift ;;
-    -h|--help) sed -n 2,31p "$0"; exit 0 ;;
+    -h|--help) sed -n 2,37p "$0"; exit 0 ;;
     *) echo "denoise.sh: unknown option $1" >&2; exit 2 ;;
   esac
   shift

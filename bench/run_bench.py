@@ -22,6 +22,7 @@ Options: --quick (no >= 1M-face meshes), --only NAME[,NAME] (only these meshes, 
 (this run's Google Benchmark JSON, for the targets table), --repeat N (timer repetitions).
 """
 from cgal_demo import cgal_demo_off
+from one_click import ONE_CLICK_STEPS
 import argparse, json, math, os, platform, re, subprocess, sys, time
 
 ML_LAP_T = math.sqrt(3) / (1 + 4 * math.sqrt(3))   # diffusion time per MeshLab cot step, in h^2
@@ -269,8 +270,6 @@ def engine_memory(m, ts):
 # time of fair() (the machine is shared: wall time counts waits for a core too), the thread rows by
 # wall time.
 ISSUE12_DEFAULTS = (("umbrella", 10.0), ("scale-dependent", 2.5), ("curvature", 22.5))
-# Each filter's one-click step count (parameters/filter_parameters.h defaultSteps).
-ONE_CLICK_STEPS = {"umbrella": 4, "scale-dependent": 2, "curvature": 4}
 
 
 def engine(m, op, order, ts, steps=1, threads=1, freeze=False, preconditioner="auto"):

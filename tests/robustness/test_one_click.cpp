@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
-// The filters' one-click settings (filter_parameters.h: L^2, 4 / 2 / 4 steps, the automatic time
+// The filters' one-click settings (filter_parameters.h: L^2, 8 / 2 / 4 steps, the automatic time
 // step and the Automatic boundary) on open input, good and bad: the boundary loops are smoothed
 // as curves with their own automatic time step (loop_strength.h), and every case gives a finite
 // result or a refusal that leaves the mesh as it was.

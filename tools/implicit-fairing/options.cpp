@@ -117,10 +117,13 @@ void addFilterParameters(CLI::App& app, CommandLine& cl, const Values& d)
                cl.steps = n;
            },
            "[stepSmoothNum] Number of time steps, each of the whole time step. Default: the "
-           "filter's, " + std::to_string(filter_parameters::defaultSteps(fairing::Operator::Umbrella)) +
-               " (umbrella, curvature) or " +
+           "filter's: " +
+               std::to_string(filter_parameters::defaultSteps(fairing::Operator::Umbrella)) +
+               " (umbrella), " +
                std::to_string(filter_parameters::defaultSteps(fairing::Operator::ScaleDependent)) +
-               " (scale-dependent)")
+               " (scale-dependent), " +
+               std::to_string(filter_parameters::defaultSteps(fairing::Operator::CurvatureFlow)) +
+               " (curvature)")
         ->type_name("N");
     app.add_option("--order", cl.order,
                    "[order] 1: diffusion with L; 2: with L^2 (section 2.6, recommended); 3, 4: "

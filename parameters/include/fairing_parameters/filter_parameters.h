@@ -105,10 +105,16 @@ struct Values {
 
 // One-click settings per filter: L^2, the automatic strength, and the number of steps that gave
 // the lowest error over scans and shapes with a known surface in bench/denoise (issue 11;
-// figures in bench/results/denoise.md): the umbrella and the curvature flow with 4 steps, the
-// scale-dependent umbrella with 2 (it degrades with more steps on scans).
+// figures in bench/results/denoise.md): the curvature flow with 4 steps, the scale-dependent
+// umbrella with 2 (it degrades with more steps on scans), the umbrella with 8: its steps share
+// one operator and run as one matrix function, so 8 cost what 4 do, and their sharper filter
+// gave lower automatic errors on scans (bench/results/issue11/auto-gap.md, section 38).
 inline int defaultSteps(fairing::Operator op) {
-    return op == fairing::Operator::ScaleDependent ? 2 : 4;
+    switch (op) {
+    case fairing::Operator::Umbrella: return 8;
+    case fairing::Operator::ScaleDependent: return 2;
+    default: return 4;
+    }
 }
 
 inline Values defaults(fairing::Operator op) {
