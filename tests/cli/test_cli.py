@@ -256,6 +256,19 @@ def case_json():
         check(0 <= j["seconds_engine"] <= j["seconds_total"], "timings %r" % j)
         print("json %s order %d: lambda_dt %.6g, %d CG iterations, volume %.9g -> %.9g"
               % (op, order, j["lambda_dt"], j["cg_iterations"], vb, va))
+    # Each filter's one-click step count, as the benchmarks that sweep and time it take it
+    # (bench/one_click.py keeps a copy of filter_parameters.h's defaultSteps).
+    spec = importlib.util.spec_from_file_location(
+        "one_click", os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
+                                  "bench", "one_click.py"))
+    one_click = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(one_click)
+    for op, steps in one_click.ONE_CLICK_STEPS.items():
+        j = run_json([src, work("out.ply"), "--operator", op])
+        check(j["steps"] == steps and j["order"] == 2,
+              "%s: the CLI's default is L^%s x%d, bench/one_click.py says L^2 x%d"
+              % (op, j["order"], j["steps"], steps))
+    print("json: the default step counts match bench/one_click.py %r" % one_click.ONE_CLICK_STEPS)
     # --no-volume: the umbrella flow shrinks the sphere
     j = run_json([src, work("out.ply"), "--operator", "umbrella", "--order", 1, "--steps", 3,
                   "--no-volume"])
