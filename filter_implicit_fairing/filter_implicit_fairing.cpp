@@ -144,7 +144,10 @@ void FilterImplicitFairing::initParameters(fairing_plugin::FilterId id, const Me
            "mean edge length their units need, so the same value works in millimetres and "
            "metres; larger values smooth more.")));
     par.addParam(RichInt(kSteps, d.steps, tr("Smoothing steps"),
-        tr("Number of implicit steps; each one applies the time step again.")));
+        tr("Number of implicit steps; each one applies the time step again. The defaults "
+           "(umbrella 8, scale-dependent 2, curvature flow 4) gave the lowest errors in the "
+           "denoising study; the umbrella's steps share one operator and run as one solve, so "
+           "its 8 cost what 4 would.")));
     par.addParam(RichEnum(kOrder, d.order, labels(orderLabels()), tr("Operator order"),
         tr("L: diffusion/flow with the operator itself. L²: with the squared operator "
            "(section 2.6), a much sharper low-pass filter: removes noise, keeps shape. "
