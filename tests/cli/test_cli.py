@@ -258,11 +258,7 @@ def case_json():
               % (op, order, j["lambda_dt"], j["cg_iterations"], vb, va))
     # Each filter's one-click step count, as the benchmarks that sweep and time it take it
     # (bench/one_click.py keeps a copy of filter_parameters.h's defaultSteps).
-    spec = importlib.util.spec_from_file_location(
-        "one_click", os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
-                                  "bench", "one_click.py"))
-    one_click = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(one_click)
+    one_click = repo_module("one_click", "bench", "one_click.py")
     for op, steps in one_click.ONE_CLICK_STEPS.items():
         j = run_json([src, work("out.ply"), "--operator", op])
         check(j["steps"] == steps and j["order"] == 2,
@@ -566,6 +562,15 @@ def case_progress():
     check("\x1b[K" in text, "the progress bar is not cleared")
 
 
+def repo_module(name, *path):
+    """A Python file of this repository, by its path from the root, as a module."""
+    spec = importlib.util.spec_from_file_location(
+        name, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", *path))
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
 def main():
     global ARGS, ML, DM
     ap = argparse.ArgumentParser()
@@ -578,11 +583,7 @@ def main():
     spec = importlib.util.spec_from_file_location("mltest", ARGS.mltest)
     ML = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(ML)
-    spec = importlib.util.spec_from_file_location(
-        "demo_mesh", os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
-                                  "scripts", "demo_mesh.py"))
-    DM = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(DM)
+    DM = repo_module("demo_mesh", "scripts", "demo_mesh.py")
     shutil.rmtree(ARGS.work, ignore_errors=True)
     os.makedirs(ARGS.work)
     cases = {"json": case_json, "engine-reference": case_engine_reference,
