@@ -840,6 +840,8 @@ void Run::assemble_surface() {
     worst_.zero_area_faces = std::max(worst_.zero_area_faces, assembly.zero_area_faces);
     worst_.floored_edges = std::max(worst_.floored_edges, assembly.floored_edges);
     worst_.massless_vertices = std::max(worst_.massless_vertices, assembly.massless_vertices);
+    worst_.negligible_vertices =
+        std::max(worst_.negligible_vertices, assembly.negligible_vertices);
     needle_faces_ = std::max(needle_faces_, assembly.needle_faces);
     // The loops keep their first step's operator: the automatic strength models them so, and
     // reassembled at every step the curvature flow's four L^2 steps on libcgal-demo's
@@ -1173,7 +1175,16 @@ void Run::warn_about_input() {
              "; a smaller time step smooths it too");
     if (worst_.massless_vertices > 0)
         warn(detail::count_of(worst_.massless_vertices, "vertex has", "vertices have") +
-             " only degenerate faces around it and was kept in place");
+             (worst_.massless_vertices == 1 ? " only degenerate faces around it and was"
+                                            : " only degenerate faces around them and were") +
+             " kept in place");
+    if (worst_.negligible_vertices > 0)
+        warn(detail::count_of(worst_.negligible_vertices, "vertex was", "vertices were") +
+             " kept in place once the steps had shrunk the faces around " +
+             (worst_.negligible_vertices == 1 ? "it" : "them") + " below " +
+             number(kNegligibleArea) +
+             " of the mean vertex area: the flow shrinks small closed parts to a point when the "
+             "volume is not preserved (preserve it, or take a smaller time step)");
     if (needle_faces_ > 0)
         warn(detail::count_of(needle_faces_, "face was a needle", "faces were needles") +
              " (an angle below 0.01 rad) in some step; their cotangent weights were capped at " +

@@ -306,6 +306,28 @@ void drop_massless(SparseOperator& result) {
     result.weight.resize(kept);
 }
 
+// Counts the vertices whose mass is below kNegligibleArea times the mean positive mass as
+// massless (mass 0) and returns how many there were. Serial, in vertex order: the same on any
+// number of threads.
+int drop_negligible_masses(SparseOperator& result) {
+    double sum = 0;
+    int with_mass = 0;
+    for (double m : result.mass)
+        if (m > 0) {
+            sum += m;
+            ++with_mass;
+        }
+    if (with_mass == 0) return 0;
+    const double least = kNegligibleArea * (sum / with_mass);
+    int dropped = 0;
+    for (double& m : result.mass)
+        if (m > 0 && m < least) {
+            m = 0;
+            ++dropped;
+        }
+    return dropped;
+}
+
 }  // namespace
 
 // One parallel region: per-face cotangents, the rows of K by a counting sort on the edges' end
@@ -403,8 +425,9 @@ SparseOperator assemble(Operator op, const HalfEdgeMesh& mesh, const Positions& 
     r.needle_faces = static_cast<int>(needles);
     r.floored_edges = static_cast<int>(floored);
     r.massless_vertices = static_cast<int>(massless);
+    if (area_mass) r.negligible_vertices = drop_negligible_masses(result);
 
-    if (massless > 0) drop_massless(result);
+    if (massless > 0 || r.negligible_vertices > 0) drop_massless(result);
     result.unit_weights = op == Operator::Umbrella &&
                           std::all_of(result.weight.begin(), result.weight.end(),
                                       [](double w) { return w == 1.0; });

@@ -424,6 +424,40 @@ TEST(Operators, CurvatureSkipsZeroAreaFaces) {
     EXPECT_NEAR(weight(w, p11, moved), 3.0, 1e-13);
 }
 
+// A closed part shrunk towards a point keeps the shape of its faces, so none of them has zero
+// area, but the L^2 system's inverse mass overflows (fairing::kNegligibleArea). Below that share of
+// the mean vertex area the curvature operator counts a vertex as massless, with its edges
+// dropped; the other part's rows stay exactly what it has alone. Not so just above the bound,
+// nor for the normalized operator, whose mass is its weights' sum (shape only).
+TEST(Operators, CurvatureCountsNegligibleAreasAsMassless) {
+    const TriangleMesh big = meshes::icosphere(2);
+    const int nb = static_cast<int>(big.positions.rows());
+    const Assembled alone = assemble(Operator::CurvatureFlow, big);
+    for (double size : {1e-7, 1e-5}) {
+        SCOPED_TRACE(testing::Message() << "small part " << size << " across");
+        const TriangleMesh m = meshes::merge(
+            big, meshes::translated(meshes::scaled(meshes::icosphere(1), size), Vec3(3, 0, 0)));
+        const int n = static_cast<int>(m.positions.rows());
+        const bool negligible = size == 1e-7;  // areas 5e-14 and 5e-10 of the mean
+        fairing::AssemblyReport report;
+        const Assembled a = assemble(Operator::CurvatureFlow, m, false, &report);
+        EXPECT_EQ(report.zero_area_faces, 0);
+        EXPECT_EQ(report.massless_vertices, 0);
+        EXPECT_EQ(report.negligible_vertices, negligible ? n - nb : 0);
+        for (int v = nb; v < n; ++v) {
+            EXPECT_EQ(a.op.mass[v] == 0, negligible) << "vertex " << v;
+            EXPECT_EQ(a.op.row_start[v + 1] == a.op.row_start[v], negligible) << "vertex " << v;
+        }
+        for (int v = 0; v < nb; ++v) EXPECT_EQ(a.op.mass[v], alone.op.mass[v]) << "vertex " << v;
+        const std::vector<double> big_weights(a.op.weight.begin(),
+                                              a.op.weight.begin() + a.op.row_start[nb]);
+        EXPECT_EQ(big_weights, alone.op.weight);
+        fairing::AssemblyReport normalized;
+        assemble(Operator::CurvatureFlow, m, true, &normalized);
+        EXPECT_EQ(normalized.negligible_vertices, 0);
+    }
+}
+
 TEST(Operators, MeanEdgeLengthByHand) {
     // 4x3 unit cells cut by one diagonal each: 16 + 15 unit edges and 12 diagonals of sqrt 2.
     const TriangleMesh m = meshes::grid(4, 3, 4.0, 3.0);

@@ -41,6 +41,8 @@ struct AssemblyReport {
     int floored_edges = 0;     // scale-dependent: edges shorter than kDuplicateEdge of the mean
                                // (duplicated vertices?), lengthened as every short edge is
     int massless_vertices = 0; // vertices with faces but no mass: their star is degenerate
+    int negligible_vertices = 0;  // curvature: area below kNegligibleArea of the mean, kept in
+                                  // place as massless ones are (a part shrunk to a point)
     int needle_faces = 0;      // curvature: faces with an angle below ~0.01 rad
                                // (|cot| > kNeedleCotangent), capped as every sliver is
 };
@@ -58,6 +60,16 @@ constexpr double kNeedleCotangent = 100;
 // kDuplicateEdge times the mean are counted (AssemblyReport::floored_edges) and warned about.
 constexpr double kShortEdge = 0.01;
 constexpr double kDuplicateEdge = 1e-4;
+
+// The curvature operator (not normalized) counts a vertex whose area (its mass, eq. 14) is below
+// kNegligibleArea times the mean vertex area as massless. Steps without volume preservation
+// shrink a small closed part towards a point while its faces keep their shape, so none of them
+// has zero area, but their area falls without bound: on libcgal-demo's b9 (four L^2 steps at
+// time step 1, no volume restored) four small parts reached 2e-17 of the mean area after two
+// steps (the third then took 1,206 CG iterations; the first two, 74) and 4e-67 after three, where
+// the fourth step's L^2 system, K M^-1 K, overflowed. A length ratio of 1e-6 is far below any
+// mesh's own grading.
+constexpr double kNegligibleArea = 1e-12;
 
 // Assembles op on the mesh at the given positions (curvature: eq. 14, faces of zero area skipped;
 // scale-dependent: eq. 11; umbrella: eq. 7). With normalized = true, mass[i] = sum_j w_ij
