@@ -2,16 +2,16 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # auto-gap.md section 39: measurement aid, not part of any build (see README.md here).
-import sys,os,json,subprocess,numpy as np
+import sys,os,json,subprocess,tempfile,numpy as np
 sys.path.insert(0,os.path.dirname(os.path.abspath(__file__))); from plyio import *
-C=os.path.expanduser('~/.cache/filter_implicit_fairing'); I=C+'/bench-build/main/bin/implicit-fairing'; T=C+'/bench-build/bench/bin/fairing-denoise-tool'; M=C+'/bench-meshes'
+C=CACHE; I=C+'/bench-build/main/bin/implicit-fairing'; T=C+'/bench-build/bench/bin/fairing-denoise-tool'; M=MESHES
 def cli(i,o,ts,extra=()):
     subprocess.run([I,'--operator','umbrella','--order','2','--steps',str(STEPS),'--time-step',repr(ts),*extra,i,o],check=True,capture_output=True)
 STEPS=int(os.environ.get('STEPS','8'))
 name,noisy,truth=sys.argv[1:4]; grid=[float(x) for x in sys.argv[4].split(',')]
 clean=M+'/dn_%s_clean.ply'%name; y=M+'/'+noisy
 Y,F=read_ply(y); V0=volume(Y,F); nv=len(Y)
-wd='/tmp/s39/w_'+noisy.replace('.ply',''); os.makedirs(wd,exist_ok=True)
+wd=os.path.join(tempfile.gettempdir(),'w_'+noisy.replace('.ply','')); os.makedirs(wd,exist_ok=True)
 variants=['engine','uniform','pos_s8','pos_s16','half_s8','half_s16','half_s32','third_s16']
 res={v:[] for v in variants}
 for ts in grid:

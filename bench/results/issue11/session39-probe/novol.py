@@ -2,17 +2,14 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # auto-gap.md section 39: measurement aid, not part of any build (see README.md here).
-import json,sys,os,subprocess,math
+import json,sys,os,subprocess,math,tempfile
 from concurrent.futures import ThreadPoolExecutor
-C=os.path.expanduser('~/.cache/filter_implicit_fairing'); M=C+'/bench-meshes'
+sys.path.insert(0,os.path.dirname(os.path.abspath(__file__))); from plyio import CACHE as C, MESHES as M, SETS
 I=C+'/bench-build/main/bin/implicit-fairing'; TOOL=C+'/bench-build/bench/bin/fairing-denoise-tool'
-sets={'results':('bench/results/denoise.jsonl',''),'denoise-seed2':('bench/results/denoise-seed2/denoise.jsonl','_s2'),
- 'denoise-seed8':('bench/results/denoise-seed8/denoise.jsonl','_s8'),'heldout-s11':('bench/results/heldout-s11/denoise.jsonl','_s11'),
- 'heldout-s13':('bench/results/heldout-s13/denoise.jsonl','_s13'),'heldout-s17':('bench/results/heldout-s17/denoise.jsonl','_s17')}
-done={(json.loads(l)['set'],json.loads(l)['mesh'],json.loads(l)['noise']) for l in open('/tmp/s39/novol.jsonl')}
 jobs=[]
-for sname,(f,suf) in sets.items():
-    rows=[json.loads(l) for l in open('/work/main/'+f)]
+for sname,(f,suf) in SETS.items():
+    if sname=='denoise-noise': continue  # the 108 scan cases: the study's draws and held out
+    rows=[json.loads(l) for l in open(f)]
     mk={m['name']:m for m in rows[0]['meta']['meshes']}
     cases={}
     for r in rows:
@@ -22,12 +19,11 @@ for sname,(f,suf) in sets.items():
         peers=[r for r in rs if r.get('method') not in ('ours','ours CLI auto')]
         cli=[r for r in rs if r.get('method')=='ours CLI auto']
         if not peers or not cli: continue
-        if (sname,m,n) in done: continue
         bp=min(peers,key=lambda r:r['rms']); bc=min(cli,key=lambda r:r['rms'])
         jobs.append((sname,m,n,M+'/dn_%s_%s%s.ply'%(m,n,suf),M+'/dn_%s_clean.ply'%m,mk[m]['closed'],bp,bc))
 def run(j):
     sname,m,n,noisy,clean,closed,bp,bc=j
-    out='/tmp/s39/nv_%s_%s_%s.ply'%(sname,m,n); res={}
+    out=os.path.join(tempfile.gettempdir(),'nv_%s_%s_%s.ply'%(sname,m,n)); res={}
     for op in ('umbrella','scale-dependent','curvature'):
         p=subprocess.run([I,'--operator',op,'--no-volume',noisy,out],capture_output=True,env=dict(os.environ,OMP_NUM_THREADS='1'))
         if p.returncode: res[op]=(float('inf'),None); continue

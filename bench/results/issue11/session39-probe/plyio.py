@@ -2,7 +2,15 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # auto-gap.md section 39: measurement aid, not part of any build (see README.md here).
+import os
 import numpy as np
+# The set-up's cache, and each committed set's extract with its noisy meshes' suffix (run from the
+# repository root).
+CACHE=os.path.expanduser('~/.cache/filter_implicit_fairing'); MESHES=CACHE+'/bench-meshes'
+SETS={'results':('bench/results/denoise.jsonl',''),'denoise-seed2':('bench/results/denoise-seed2/denoise.jsonl','_s2'),
+ 'denoise-seed8':('bench/results/denoise-seed8/denoise.jsonl','_s8'),'heldout-s11':('bench/results/heldout-s11/denoise.jsonl','_s11'),
+ 'heldout-s13':('bench/results/heldout-s13/denoise.jsonl','_s13'),'heldout-s17':('bench/results/heldout-s17/denoise.jsonl','_s17'),
+ 'denoise-noise':('bench/results/denoise-noise/denoise.jsonl','_s7')}
 def read_ply(path):
     with open(path,'rb') as f:
         hdr=[]
@@ -42,12 +50,6 @@ def normals(X,F):
     n=np.zeros_like(X)
     for k in range(3): np.add.at(n,F[:,k],fn)
     return n/np.linalg.norm(n,axis=1)[:,None]
-def vertex_area(X,F):
-    a,b,c=X[F[:,0]],X[F[:,1]],X[F[:,2]]
-    ar=0.5*np.linalg.norm(np.cross(b-a,c-a),axis=1)
-    A=np.zeros(len(X))
-    for k in range(3): np.add.at(A,F[:,k],ar/3)
-    return A
 def umbrella_smooth(s,F,passes,nv):
     # half-passes of uniform averaging of a scalar over edges
     E=np.concatenate([F[:,[0,1]],F[:,[1,2]],F[:,[2,0]]]); E=np.unique(np.sort(E,1),axis=0)

@@ -2,22 +2,18 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # auto-gap.md section 39: measurement aid, not part of any build (see README.md here).
-import json,sys,os,subprocess,glob
+import json,sys,os,subprocess
 from concurrent.futures import ThreadPoolExecutor
-C=os.path.expanduser('~/.cache/filter_implicit_fairing'); M=C+'/bench-meshes'
-TOOL=os.environ.get('TOOL','/tmp/s39/bb/bin/fairing-denoise-tool')
+sys.path.insert(0,os.path.dirname(os.path.abspath(__file__))); from plyio import MESHES as M, SETS
+TOOL=os.environ['TOOL']  # a fairing-denoise-tool built with throwaway.patch
 OP,ORD,ST=sys.argv[1],int(sys.argv[2]),int(sys.argv[3]); kinds=sys.argv[4].split(',')
-sets={'results':('bench/results/denoise.jsonl',''),'denoise-seed2':('bench/results/denoise-seed2/denoise.jsonl','_s2'),
- 'denoise-seed8':('bench/results/denoise-seed8/denoise.jsonl','_s8'),'heldout-s11':('bench/results/heldout-s11/denoise.jsonl','_s11'),
- 'heldout-s13':('bench/results/heldout-s13/denoise.jsonl','_s13'),'heldout-s17':('bench/results/heldout-s17/denoise.jsonl','_s17'),
- 'denoise-noise':('bench/results/denoise-noise/denoise.jsonl','_s7')}
 h_cache={}
 def mean_edge(p):
     if p not in h_cache: h_cache[p]=json.loads(subprocess.run([TOOL,'info',p],capture_output=True,text=True).stdout)['mean_edge']
     return h_cache[p]
 jobs=[]
-for sname,(f,suf) in sets.items():
-    rows=[json.loads(l) for l in open('/work/main/'+f)]
+for sname,(f,suf) in SETS.items():
+    rows=[json.loads(l) for l in open(f)]
     meta=rows[0]['meta']; mk={m['name']:m for m in meta['meshes']}
     cases={}
     for r in rows:
