@@ -32,14 +32,17 @@ DirectSystem direct_system(const SparseOperator& op, const Positions& y,
     }
     SparseMatrix kff(n, n);
     kff.setFromTriplets(k.begin(), k.end());
-    if (order == 1) {
-        s.c = -kff;
-        s.g = fixed;
-    } else {
-        const Eigen::VectorXd inverse_mass = mass.cwiseInverse();
-        s.c = kff * inverse_mass.asDiagonal() * kff;
-        s.g = -(kff * (inverse_mass.asDiagonal() * fixed));
+    // C = (-1)^p (K_ff M_f^-1)^(p-1) K_ff and g = (-1)^(p-1) (K_ff M_f^-1)^(p-1) K_fc x_c: P
+    // zeroes the fixed rows, so the fixed columns enter through the first factor only.
+    const Eigen::VectorXd inverse_mass = mass.cwiseInverse();
+    s.c = kff;
+    s.g = fixed;
+    for (int power = 2; power <= order; ++power) {
+        s.c = SparseMatrix(kff * inverse_mass.asDiagonal()) * s.c;
+        s.g = kff * (inverse_mass.asDiagonal() * s.g);
     }
+    if (order % 2) s.c = -s.c;
+    else s.g = -s.g;
     s.c.makeCompressed();
     s.a = s.c;
     s.diagonal.assign(n, -1);
@@ -69,10 +72,10 @@ bool take_direct_steps(DirectSystem& s, double lambda, int steps, const Eigen::M
     return x.allFinite();
 }
 
-SolveStats solve_directly(const LinearSystem& system, Positions& x) {
+SolveStats solve_directly(const LinearSystem& system, Positions& x, double max_residual) {
     const SparseOperator& op = *system.op;
     SolveStats stats;
-    if (system.order > 2 || system.free.size() != static_cast<std::size_t>(op.size()) ||
+    if (system.order < 1 || system.order > 4 || system.free.size() != static_cast<std::size_t>(op.size()) ||
         system.diagonal.size() != system.free.size())
         return stats;
     std::vector<int> rows, index(op.size(), -1);
@@ -101,6 +104,7 @@ SolveStats solve_directly(const LinearSystem& system, Positions& x) {
         const double b = rhs.col(c).norm();
         if (b > 0) stats.residual = std::max(stats.residual, residual.col(c).norm() / b);
     }
+    if (!(stats.residual <= max_residual)) return stats;
     for (int a = 0; a < n; ++a) x.row(rows[a]) = moved.row(a);
     stats.direct = true;
     stats.converged = true;

@@ -1,22 +1,25 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
-// Implicit steps of order 1 or 2 solved by a sparse LDL^T instead of conjugate gradients (not
+// Implicit steps of any order solved by a sparse LDL^T instead of conjugate gradients (not
 // installed).
 //
 // The systems are solver.h's, on the free rows f of an operator:
 //   order 1:  A = D - lambda K_ff,               b = D x_f + lambda K_fc x_c
 //   order 2:  A = D + lambda K_ff M_f^-1 K_ff,   b = D x_f - lambda K_ff M_f^-1 K_fc x_c
-// (the fixed columns c moved to the right; P zeroes L at fixed rows, so L^2 = L P L). A is
-// symmetric positive definite whenever D > 0, and Eigen's SimplicialLDLT (approximate minimum
+//   order p:  A = D + lambda (-1)^p (K_ff M_f^-1)^(p-1) K_ff,
+//             b = D x_f + lambda (-1)^(p-1) (K_ff M_f^-1)^(p-1) K_fc x_c
+// (the fixed columns c moved to the right; P zeroes L at fixed rows, so L^p = L P L ... P L). A
+// is symmetric positive definite whenever D > 0, and Eigen's SimplicialLDLT (approximate minimum
 // degree ordering) factors it. A direct solve is backward stable: its residual is rounding's,
 // however ill-conditioned A is, where CG on the same system stalls (needle triangles, whose
 // cotangent weights reach the cap, or loops far finer than the mean edge).
 //
 // Used for the boundary loops' cyclic bands (always: their factor is linear in the loop's
-// length) and for their automatic time step (loop_strength.h), and as the surface's fallback
-// when its iterative solve does not converge on a mesh small enough to factor (fairing.cpp,
-// Run::integrate; the factor of an L^2 system couples two rings, so its fill grows faster than
-// the mesh).
+// length, a band of width 2p + 1; the iterative L^4 solve of libcgal-demo's open turbine blade's
+// loops stalled at residuals of 2e-8 to 4e-5), for their automatic time step (loop_strength.h,
+// orders 1 and 2), and as the surface's fallback when its iterative solve does not converge on a
+// mesh small enough to factor (fairing.cpp, Run::integrate; the factor of an L^p system couples
+// p rings, so its fill grows faster than the mesh).
 #pragma once
 
 #include "fairing/operators.h"
@@ -24,6 +27,7 @@
 
 #include <Eigen/Sparse>
 
+#include <limits>
 #include <vector>
 
 namespace fairing {
@@ -57,11 +61,14 @@ bool take_direct_steps(DirectSystem& s, double lambda, int steps, const Eigen::M
                        Eigen::SimplicialLDLT<SparseMatrix>& ldlt, Eigen::MatrixXd& x,
                        Eigen::MatrixXd& rhs);
 
-// One step of `system` (order 1 or 2, D = system.diagonal): x's free rows take the result.
+// One step of `system` (order 1 to 4, D = system.diagonal): x's free rows take the result.
 // Stats: no iterations, `direct`, the relative residual max over the columns of
 // ||A x - b|| / ||b|| (measured, not a stopping rule). converged = false with x untouched when
-// the system does not factor, has a free row without a positive diagonal, or is of order 3 or 4.
-SolveStats solve_directly(const LinearSystem& system, Positions& x);
+// the system does not factor, has a free row without a positive diagonal, or leaves a residual
+// above max_residual: rounding's, but amplified by the decades M^-1 spans, p - 1 times in L^p,
+// and the error of the result with it (fairing.cpp, kDirectResidual).
+SolveStats solve_directly(const LinearSystem& system, Positions& x,
+                          double max_residual = std::numeric_limits<double>::infinity());
 
 }  // namespace detail
 }  // namespace fairing

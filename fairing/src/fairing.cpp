@@ -61,10 +61,24 @@ const char* to_string(Restoration restoration) {
 namespace {
 
 // The most free rows a surface system may have to be factored when its iterative solve stops
-// short (Run::integrate). Measured on noisy tori, curvature L^2 at 22.5, one thread, every step
-// factored (--max-iterations 1): per step 0.7 s and 96 MB at 25 k vertices, 10.7 s and 455 MB at
-// 100 k, 39 s and 838 MB at 200 k, against 0.07, 0.3 and 0.6 s for CG (auto-gap.md section 32).
-constexpr std::ptrdiff_t kMaxDirectFallbackRows = 100000;
+// short (Run::integrate), by order. Measured on noisy tori, curvature L^2 at 22.5, one thread,
+// every step factored (--max-iterations 1): per step 0.7 s and 96 MB at 25 k vertices, 10.7 s and
+// 455 MB at 100 k, 39 s and 838 MB at 200 k, against 0.07, 0.3 and 0.6 s for CG (auto-gap.md
+// section 32). L^p couples p rings, and the factor's fill grows with them: on the 25.6 k-vertex
+// two-density sphere one factored curvature step took 1.8 s and 87 MB (L^2), 6.8 s and 148 MB
+// (L^3), 18 s and 239 MB (L^4); on the 37.7 k-vertex bunny 1.3, 4.8 and 13 s.
+std::ptrdiff_t max_direct_fallback_rows(int order) {
+    return order <= 2 ? 100000 : order == 3 ? 50000 : 25000;
+}
+
+// The largest relative residual of a factored step that is kept (Run::integrate). A
+// factorization is backward stable, but when M^-1 spans many decades the residual of an L^p
+// system is rounding amplified by them, and so is the error: one L^4 curvature step (no volume
+// restored) on a noisy 642-vertex sphere with one vertex star shrunk by 1e-2 or 1e-3, against the
+// matrix-function step (error bounded to 1e-8), differed by 2.4e-5 of the radius at a residual
+// of 1.2e-5, by 1.3e-3 at 1.2e-3 and by 1.0 at 0.22. The loops' factored L^2 steps reach 4e-6
+// (the dragon's sliver holes).
+constexpr double kDirectResidual = 1e-4;
 
 std::string number(double v) {
     std::ostringstream s;
@@ -212,7 +226,9 @@ private:
                    int step, const char* system);
     void explicit_step(const SparseOperator& op, const std::vector<char>& free,
                        double lambda_dt, const char* system);
-    void record(const SolveStats& stats, int step, const char* system);
+    void record(const SolveStats& stats, int step, const char* system,
+                const std::string& cause = std::string());
+    std::string ill_conditioning(const SparseOperator& op, const std::vector<char>& free) const;
     void restore();
     double size_of(const Component& component, const Positions& x) const;
     void leave_as_given(std::size_t c);
@@ -315,7 +331,8 @@ void Run::explicit_step(const SparseOperator& op, const std::vector<char>& free,
         if (free[i]) x_.row(i) += sign * lambda_dt * weight(i) * lx.row(i);
 }
 
-void Run::record(const SolveStats& stats, int step, const char* system) {
+void Run::record(const SolveStats& stats, int step, const char* system,
+                 const std::string& cause) {
     SolveReport report;
     report.step = step;
     report.system = system;
@@ -334,7 +351,8 @@ void Run::record(const SolveStats& stats, int step, const char* system) {
         "the linear solve (" + std::string(system) + ", step " + std::to_string(step + 1) +
         ") did not converge in " + std::to_string(stats.iterations) + " iterations: residual " +
         number(stats.residual) + ", tolerance " + number(options_.tolerance) +
-        (needle_faces_ > 0
+        (!cause.empty() ? cause
+         : needle_faces_ > 0
              ? " (" + detail::count_of(needle_faces_, "face is a needle", "faces are needles") +
                    ", with an angle below 0.01 rad: their cotangent weights, even capped at " +
                    number(kCotangentCap) +
@@ -342,9 +360,38 @@ void Run::record(const SolveStats& stats, int step, const char* system) {
                    "Flip' or 'Merge Close Vertices' repairs them)"
              : std::string());
     if (!options_.accept_unconverged)
-        throw Error(what + ". Raise the iteration cap or the tolerance, or use a smaller "
-                           "time step; the mesh was left unchanged");
+        throw Error(what +
+                    (cause.empty() ? ". Raise the iteration cap or the tolerance, or use a "
+                                     "smaller time step; the mesh was left unchanged"
+                                   : ". Use a lower order or a smaller time step, or freeze "
+                                     "the operator; the mesh was left unchanged"));
     warn(what + "; the unconverged result was kept as asked");
+}
+
+// Why an L^p system (p >= 2) may be out of reach, or empty: M^-1 enters it p - 1 times, so a
+// vertex mass r times the mean raises its condition by about r^-(p-1). The curvature flow's
+// recomputed L^3 and L^4 steps shrink some vertex stars that far: on libcgal-demo's femur at
+// half an edge of noise (one click, order 3) to 1e-9 of the mean area by the third step, where
+// the iterative solves diverged and a factorization left a residual of 0.08.
+std::string Run::ill_conditioning(const SparseOperator& op, const std::vector<char>& free) const {
+    double sum = 0, least = 0;
+    int rows = 0;
+    for (int i = 0; i < op.size(); ++i) {
+        if (!free[i] || !(op.mass[i] > 0)) continue;
+        sum += op.mass[i];
+        least = rows++ == 0 ? op.mass[i] : std::min(least, op.mass[i]);
+    }
+    if (rows == 0 || options_.order < 2) return std::string();
+    const double ratio = least / (sum / rows);
+    if (std::pow(ratio, options_.order - 1) >= 1e-6) return std::string();
+    return " (the smallest vertex mass, its area for the curvature flow, is " + number(ratio) +
+           " of the mean, and an order-" + std::to_string(options_.order) +
+           " system's condition grows with its inverse to the power " +
+           std::to_string(options_.order - 1) +
+           (options_.op == Operator::Umbrella || options_.freeze_operator
+                ? std::string(")")
+                : std::string("; recomputed steps shrink vertex stars, a frozen operator does "
+                              "not)"));
 }
 
 void Run::integrate(const SparseOperator& op, const std::vector<char>& free, double lambda_dt,
@@ -370,8 +417,9 @@ void Run::integrate(const SparseOperator& op, const std::vector<char>& free, dou
         };
     }
     const bool surface = &op == &surface_;
-    if (!surface && options_.order <= 2) {  // the loops' cyclic bands: solved directly
-        const SolveStats direct = detail::solve_directly(linear, x_);
+    const double trusted = std::max(options_.tolerance, kDirectResidual);
+    if (!surface) {  // the loops' cyclic bands: solved directly
+        const SolveStats direct = detail::solve_directly(linear, x_, trusted);
         if (direct.converged) {
             record(direct, step, system);
             return;
@@ -384,21 +432,22 @@ void Run::integrate(const SparseOperator& op, const std::vector<char>& free, dou
     // tolerance: on libcgal-demo's femur with half an edge of noise the one-click run's fourth
     // step stalled at a residual of 2.8e-7 after 1242 iterations (84 needles) and was refused.
     const bool may_factor = surface && options_.direct_fallback &&
-                            !options_.accept_unconverged && options_.order <= 2 &&
-                            std::count(free.begin(), free.end(), char(1)) <= kMaxDirectFallbackRows;
+                            !options_.accept_unconverged &&
+                            std::count(free.begin(), free.end(), char(1)) <=
+                                max_direct_fallback_rows(options_.order);
     Positions before;
     if (may_factor) before = x_;
     SolveStats stats = solve(linear, x_, settings);
     if (surface) previous_surface_solve_ = stats;
     if (!stats.converged && may_factor) {
-        SolveStats direct = detail::solve_directly(linear, before);
+        SolveStats direct = detail::solve_directly(linear, before, trusted);
         if (direct.converged) {
             x_.swap(before);
             direct.iterations = stats.iterations;  // what the stalled solve cost
             stats = direct;
         }
     }
-    record(stats, step, system);
+    record(stats, step, system, stats.converged ? std::string() : ill_conditioning(op, free));
 }
 
 // One L^3 or L^4 step without soft weights as the frozen steps' matrix function of the

@@ -167,6 +167,7 @@ SolveStats solve_power(const LinearSystem& system, Positions& x, const Positions
     SolveStats stats;
     Positions r(n, 3), q, scratch, correction(n, 3);
     const int parts = (power + 1) / 2;
+    double best = 0;  // the lowest worst residual ratio of a round so far
     for (int round = 0;; ++round) {
         system.apply(x, q, scratch);
         for (int i = 0; i < n; ++i)
@@ -179,6 +180,17 @@ SolveStats solve_power(const LinearSystem& system, Positions& x, const Positions
             active[col] = rn[col] > goal[col];
             worst = std::max(worst, goal[col] > 0 ? rn[col] / goal[col] : 0.0);
         }
+        // A round that raised the residual diverges: its parts' errors, amplified by (c g)^(p-1),
+        // outweigh what they removed, and later rounds would compound it (to 1e67 on a mesh whose
+        // recomputed curvature steps had shrunk vertex areas to 1e-9 of the mean). Its
+        // correction is taken back and the solve stops unconverged.
+        if (round > 0 && worst > best) {
+            for (int i = 0; i < n; ++i)
+                if (free[i]) x.row(i) -= correction.row(i);
+            stats.residual = best * settings.tolerance;
+            return stats;
+        }
+        best = worst;
         stats.residual = worst * settings.tolerance;  // relative to the right-hand side's scale
         if (!any(active) || round == kMaxRounds || stats.iterations >= settings.max_iterations) {
             stats.converged = !any(active);

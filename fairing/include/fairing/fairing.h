@@ -181,11 +181,13 @@ struct Options {
     ResidualNorm norm = ResidualNorm::L2;
     int max_iterations = 2000;
     Preconditioner preconditioner = Preconditioner::Automatic;
-    // An implicit surface solve of order 1 or 2 that does not converge (stalls, or reaches
-    // max_iterations) on at most 100,000 free vertices is solved again by a sparse LDL^T, whose
-    // residual is rounding's (SolveReport::direct), unless accept_unconverged asks for the last
-    // iterate. Needles that the curvature flow's later steps make can stall CG short of the
-    // tolerance on real scans. false: such a solve is refused as below.
+    // An implicit surface solve that does not converge (stalls, or reaches max_iterations) on at
+    // most 100,000 free vertices (L and L^2; L^3 50,000, L^4 25,000: the factor couples p rings)
+    // is solved again by a sparse LDL^T (SolveReport::direct), unless accept_unconverged asks for
+    // the last iterate. Its residual is rounding's, amplified by the decades M^-1 spans, p - 1
+    // times in L^p; a result whose residual exceeds 1e-4 (and the tolerance) is not kept.
+    // Needles that the curvature flow's later steps make can stall CG short of the tolerance on
+    // real scans. false: such a solve is refused as below.
     bool direct_fallback = true;
     // When the iteration cap is hit and no direct solve took over: false refuses (the input stays
     // as it was); true accepts the last iterate and records a warning with the residual reached.
