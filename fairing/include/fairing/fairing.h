@@ -185,7 +185,7 @@ struct Options {
     // most 100,000 free vertices (L and L^2; L^3 50,000, L^4 25,000: the factor couples p rings)
     // is solved again by a sparse LDL^T (SolveReport::direct), unless accept_unconverged asks for
     // the last iterate. Its residual is rounding's, amplified by the decades M^-1 spans, p - 1
-    // times in L^p; a result whose residual exceeds 1e-4 (and the tolerance) is not kept.
+    // times in L^p; a result whose residual exceeds 1e-3 (and the tolerance) is not kept.
     // Needles that the curvature flow's later steps make can stall CG short of the tolerance on
     // real scans. false: such a solve is refused as below.
     bool direct_fallback = true;
