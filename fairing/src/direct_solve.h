@@ -61,7 +61,10 @@ bool take_direct_steps(DirectSystem& s, double lambda, int steps, const Eigen::M
                        Eigen::SimplicialLDLT<SparseMatrix>& ldlt, Eigen::MatrixXd& x,
                        Eigen::MatrixXd& rhs);
 
-// One step of `system` (order 1 to 4, D = system.diagonal): x's free rows take the result.
+// One step of `system` (order 1 to 4, D = system.diagonal): x's free rows take the result. A
+// result over max_residual is solved again with each part of the free rows that no fixed row
+// touches moved to its centroid (the step commutes with translating such a part), and the
+// residual of that counts against the full right-hand side.
 // Stats: no iterations, `direct`, the relative residual max over the columns of
 // ||A x - b|| / ||b|| (measured, not a stopping rule). converged = false with x untouched when
 // the system does not factor, has a free row without a positive diagonal, or leaves a residual
