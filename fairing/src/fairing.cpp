@@ -1157,7 +1157,8 @@ void Run::take_steps() {
             warn(std::string(step + 1 < steps ? "steps " : "step ") + std::to_string(step + 1) +
                  (step + 1 < steps ? "-" + std::to_string(steps) : std::string()) +
                  " kept the operator of step " + std::to_string(step) +
-                 " (frozen, section 4.3): assembled again, its smallest vertex area was " +
+                 " (frozen, section 4.3): assembled again, its smallest vertex " +
+                 (options_.op == Operator::CurvatureFlow ? "area" : "mass") + " was " +
                  number(ratio) + " of the mean, and its order-" + std::to_string(options_.order) +
                  " system could not be solved. Recomputed steps of order 3 and 4 shrink vertex "
                  "stars; a lower order or a frozen operator does not");
