@@ -193,14 +193,14 @@ void FilterImplicitFairing::initParameters(fairing_plugin::FilterId id, const Me
     par.addParam(RichInt(kMaxIterations, d.maxIterations, tr("Max solver iterations"),
         tr("Iteration cap of each conjugate-gradient solve. A solve that stops short of the "
            "tolerance (at the cap, or stalled by needle triangles) on a mesh of up to 100,000 "
-           "free vertices, with L or L², is solved again directly (sparse LDLᵀ).")));
+           "free vertices (L or L²; L³ 50,000, L⁴ 25,000) is solved again directly (sparse "
+           "LDLᵀ).")));
     par.addParam(RichBool(kFreezeOperator, d.freezeOperator, tr("Freeze operator"),
         tr("Keep the operator's weights of the first step for all steps (smoothing relative to "
            "the initial mesh, section 4.3) instead of recomputing them at each step.")));
     par.addParam(RichBool(kAcceptUnconverged, d.acceptUnconverged, tr("Accept unconverged solves"),
-        tr("When a solve hits the iteration cap and is not solved directly instead (larger "
-           "meshes, L³ and L⁴), keep its last iterate with a warning instead of failing and "
-           "leaving the mesh unchanged.")));
+        tr("When a solve hits the iteration cap, keep its last iterate with a warning instead "
+           "of solving it again directly or failing and leaving the mesh unchanged.")));
 }
 
 namespace {

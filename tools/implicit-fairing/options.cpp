@@ -185,14 +185,13 @@ void addFilterParameters(CLI::App& app, CommandLine& cl, const Values& d)
     app.add_option("--max-iterations", cl.maxIterations,
                    "[maxIterations] Conjugate-gradient iteration cap per solve (>= 1). A solve that "
                    "stops short of the tolerance (at the cap, or stalled by needle triangles) on "
-                   "a mesh of up to 100,000 free vertices, with L or L^2, is solved again "
-                   "directly (sparse LDL^T). Default: " +
+                   "a mesh of up to 100,000 free vertices (L or L^2; L^3 50,000, L^4 25,000) is "
+                   "solved again directly (sparse LDL^T). Default: " +
                        std::to_string(d.maxIterations))
         ->type_name("N");
     app.add_flag("--accept-unconverged", cl.acceptUnconverged,
-                 "[acceptUnconverged] When the iteration cap is hit and the solve is not taken "
-                 "over directly (larger meshes, L^3, L^4), keep the last iterate with a warning "
-                 "instead of failing. Default: fail");
+                 "[acceptUnconverged] When the iteration cap is hit, keep the last iterate with "
+                 "a warning instead of solving it again directly or failing. Default: fail");
 }
 
 // The options only the tool has.
