@@ -153,9 +153,9 @@ SolveStats solve_directly(const LinearSystem& system, Positions& x, double max_r
     stats.residual = relative_residual(rhs - s.a * moved, rhs);
     if (!(stats.residual <= max_residual)) {
         // The rounding is relative to the data's distance from the origin, which a small part far
-        // from it (a sliver hole's loop) exceeds by its size many times over: its L^3 loop step
-        // left 1e17 on a sphere. Solved again about each free part's centroid, the residual
-        // counts against the right-hand side's full size.
+        // from it (a sliver hole's loop) exceeds by its size many times over: a test sphere's
+        // sliver hole was refused at orders 3 and 4 until its loop was solved so. Solved again
+        // about each free part's centroid, the residual counts against the full right-hand side.
         const Eigen::MatrixXd centroid = free_part_centroids(op, x, rows, index);
         Eigen::MatrixXd centred_moved, centred_rhs;
         if (!take_direct_steps(s, system.lambda_dt, 1, y - centroid, ldlt, centred_moved,
