@@ -79,6 +79,21 @@ Options curve_options(Operator op) {
     return o;
 }
 
+// A noisy icosphere with one face removed and its corners drawn towards their centre to
+// `closeness` of their distance (a sliver hole, as libcgal-demo's dragon has two); h: the mean
+// edge of the sphere, sliver: the hole's corners.
+TriangleMesh sliver_hole_sphere(double closeness, double& h, Triangle& sliver) {
+    const TriangleMesh sphere = meshes::icosphere(3);
+    h = meshes::mean_edge_length(sphere.positions, sphere.triangles);
+    TriangleMesh m = meshes::gaussian_radial_noise(sphere, 0.1 * h, 53);
+    sliver = m.triangles[7];
+    m.triangles.erase(m.triangles.begin() + 7);
+    Eigen::RowVector3d centre = Eigen::RowVector3d::Zero();
+    for (int v : sliver) centre += m.positions.row(v) / 3;
+    for (int v : sliver) m.positions.row(v) = centre + closeness * (m.positions.row(v) - centre);
+    return m;
+}
+
 }  // namespace
 
 TEST(Boundary, FixedKeepsLoopsBitIdentical) {
@@ -319,18 +334,12 @@ TEST(Boundary, AutomaticLoopStepKeepsAHoleOpen) {
 // strong loop step there, where the iterative solve of the loop system stalled on rounding (the
 // dragon's one-click runs were refused: "did not converge in 70 iterations, residual 1.2e-6").
 // The loops are solved directly (direct_solve.h): every one-click run succeeds,
-// and the sliver stays put. At orders 3 and 4 the factored step's rounding, relative to the
-// loop's distance from the origin, left residuals of 1e16-1e19 until the loop was solved about
-// its centroid.
+// and the sliver stays put. At orders 3 and 4 the loop solves stopped at residuals of 1e16 to
+// 1e19 until the factored step was solved again about the loop's centroid.
 TEST(Boundary, SliverHoleSmoothsAsACurve) {
-    const TriangleMesh sphere = meshes::icosphere(3);
-    const double h = meshes::mean_edge_length(sphere.positions, sphere.triangles);
-    TriangleMesh m = meshes::gaussian_radial_noise(sphere, 0.1 * h, 53);
-    const Triangle sliver = m.triangles[7];
-    m.triangles.erase(m.triangles.begin() + 7);
-    Eigen::RowVector3d centre = Eigen::RowVector3d::Zero();
-    for (int v : sliver) centre += m.positions.row(v) / 3;
-    for (int v : sliver) m.positions.row(v) = centre + 0.01 * (m.positions.row(v) - centre);
+    double h = 0;
+    Triangle sliver;
+    const TriangleMesh m = sliver_hole_sphere(0.01, h, sliver);
     ASSERT_EQ(meshes::boundary_loops(m.triangles).size(), 1u);
     for (Operator op : kOperators) {
         for (int order : {2, 3, 4}) {
@@ -354,17 +363,13 @@ TEST(Boundary, SliverHoleSmoothsAsACurve) {
 }
 
 // A sliver hole a millionth of its size from closing: its L^4 loop system is stiffer than even a
-// factorization about its centroid can carry (residual 7e17), and the run was refused. The loop
+// factorization about its centroid can carry, and the run was refused (the loop solve stopped
+// at a residual of 7e17). The loop
 // now stays in place, as with a fixed boundary, with a warning, and the surface is smoothed.
 TEST(Boundary, AnUnsolvableSliverLoopStaysInPlace) {
-    const TriangleMesh sphere = meshes::icosphere(3);
-    const double h = meshes::mean_edge_length(sphere.positions, sphere.triangles);
-    TriangleMesh m = meshes::gaussian_radial_noise(sphere, 0.1 * h, 53);
-    const Triangle sliver = m.triangles[7];
-    m.triangles.erase(m.triangles.begin() + 7);
-    Eigen::RowVector3d centre = Eigen::RowVector3d::Zero();
-    for (int v : sliver) centre += m.positions.row(v) / 3;
-    for (int v : sliver) m.positions.row(v) = centre + 1e-6 * (m.positions.row(v) - centre);
+    double h = 0;
+    Triangle sliver;
+    const TriangleMesh m = sliver_hole_sphere(1e-6, h, sliver);
     Options o = curve_options(Operator::Umbrella);
     o.order = 4;
     fairing::Result r;
