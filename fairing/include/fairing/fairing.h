@@ -130,7 +130,9 @@ struct Options {
     OptionalDouble time_step;
     int steps = 1;
     // Section 4.3: keep the coefficients of the first step for all steps (smoothing "relative to
-    // the initial mesh"). Off: coefficients are recomputed from the current mesh at each step.
+    // the initial mesh"). Off: coefficients are recomputed from the current mesh at each step;
+    // a recomputed L^3 or L^4 step whose system cannot be solved (its vertex stars shrunk) is
+    // taken on the last operator that solved, frozen from there, with a warning.
     // The umbrella's never change. Implicit steps on a frozen operator are one linear filter and
     // are taken at once where measured cheaper (the defaults' L^2 steps; src/frozen_steps.h):
     // the same result to the tolerance, one SolveReport for all of them.
