@@ -135,7 +135,10 @@ struct Options {
     // taken on the last operator that solved, frozen from there, with a warning.
     // The umbrella's never change. Implicit steps on a frozen operator are one linear filter and
     // are taken at once where measured cheaper (the defaults' L^2 steps; src/frozen_steps.h):
-    // the same result to the tolerance, one SolveReport for all of them.
+    // the same result to the tolerance, one SolveReport for all of them. The curvature flow's
+    // recomputed vertex areas follow a scan's thin parts as they shrink, and keep a noisy sphere
+    // round: on scans frozen steps erred 0.88x the recomputed ones (120 cases), on the study's
+    // spheres 2.0x (bench/results/issue11/auto-gap.md, section 41), so off stays the default.
     bool freeze_operator = false;
     // Explicit integration only: use the normalized operators of section 5.5 (eigenvalues of L
     // in [-2, 0], so time_step is dimensionless and up to 1 is stable).
