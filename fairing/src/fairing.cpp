@@ -252,6 +252,7 @@ private:
     void record(const SolveStats& stats, int step, const char* system,
                 const std::string& cause = std::string());
     std::string ill_conditioning(const SparseOperator& op, const std::vector<char>& free) const;
+    double farthest_flight(const Positions& from) const;
     void restore();
     double size_of(const Component& component, const Positions& x) const;
     void leave_as_given(std::size_t c);
@@ -407,6 +408,27 @@ std::string Run::ill_conditioning(const SparseOperator& op, const std::vector<ch
                 ? std::string(")")
                 : std::string("; recomputed steps shrink vertex stars, a frozen operator does "
                               "not)"));
+}
+
+// How far the step from `from` to x_ moved a vertex, in sizes (size_of, at `from`) of its
+// component; 0 for components of one point. A smoothing step pulls a part in on itself, a vertex
+// about its distance from the part's centre (on 16-vertex patches with a cell of noise, whose
+// loops a step of 100 drew in first, up to 3.8 radii), so past kBlownUp it has blown up: a vertex
+// whose star a recomputed L^3 or L^4 step shrank to almost no area is held to its data with that
+// area only, and the order-p term places it by extrapolation. On libcgal-demo's b9_mesh at a
+// quarter edge of noise (curvature flow, order 4, its loops smoothed) the fourth step's solves
+// converged to 1e-9 and threw vertices of a 1,703-vertex part up to 1,540 mean edges
+// (auto-gap.md, section 41).
+constexpr double kBlownUp = 10;
+double Run::farthest_flight(const Positions& from) const {
+    double farthest = 0;
+    for (const Component& part : he_.components()) {
+        const double size = size_of(part, from);
+        if (!(size > 0)) continue;
+        for (int v : part.vertices)
+            farthest = std::max(farthest, (x_.row(v) - from.row(v)).norm() / size);
+    }
+    return farthest;
 }
 
 void Run::integrate(const SparseOperator& op, const std::vector<char>& free, double lambda_dt,
@@ -1043,9 +1065,10 @@ void Run::choose_time_step() {
 // libcgal-demo's open turbine blade the best loop step moved from 0.01 to 100 between a tenth and
 // half an edge of noise while the surface's stayed near 200-270; auto-gap.md, section 29). The
 // noise level and normals are the surface's: a loop's few vertices would estimate them poorly.
-// Nothing is restored on a loop, and it keeps its first step's operator. Implicit L and L^2 are
-// measured exactly by direct solves (loop_strength.h); other cases by the surface's Lanczos
-// model. Returns the Lanczos steps taken; on failure the loops keep the surface's time step.
+// Nothing is restored on a loop, and it keeps its first step's operator. Implicit steps of every
+// order are measured exactly by direct solves (loop_strength.h); explicit ones by the surface's
+// Lanczos model, which sees only the normals' channel: at orders 3 and 4 it rounded a noisy
+// square's outline by 1.2 cells and drew a hole's loop 0.44 cells in (auto-gap.md, section 41). Returns the Lanczos steps taken; on failure the loops keep the surface's time step.
 int Run::choose_curve_time_step(const detail::StrengthProblem& surface, double noise_level) {
     // The loop's weights 1/|e| come from the noisy data and, on a loop sampled finer than the
     // noise, depend on it: the risk takes the Monte-Carlo divergence (auto-gap.md, section 30).
@@ -1053,7 +1076,7 @@ int Run::choose_curve_time_step(const detail::StrengthProblem& surface, double n
         return assemble_boundary_curve(he_, at, options_.threads);
     };
     try {
-        if (surface.order <= 2 && !surface.explicit_integration) {
+        if (!surface.explicit_integration) {
             detail::LoopStrengthProblem loop;
             loop.op = &curve_;
             loop.free = &free_curve_;
@@ -1141,8 +1164,11 @@ void Run::take_steps() {
         if (may_retake) before = x_;
         const std::size_t reports = result_.solves.size();
         const double max_residual = result_.max_residual;
+        double flight = 0;  // may_retake: how far the step threw a vertex (farthest_flight)
         try {
             integrate(surface_, free, lambda_dt, step, "surface");
+            if (may_retake && (flight = farthest_flight(before)) > kBlownUp)
+                throw UnsolvedStep("blown up");
         } catch (const UnsolvedStep&) {
             if (!may_retake) throw;
             const double ratio = smallest_mass_ratio(surface_, free);
@@ -1159,9 +1185,14 @@ void Run::take_steps() {
                  " kept the operator of step " + std::to_string(step) +
                  " (frozen, section 4.3): assembled again, its smallest vertex " +
                  (options_.op == Operator::CurvatureFlow ? "area" : "mass") + " was " +
-                 number(ratio) + " of the mean, and its order-" + std::to_string(options_.order) +
-                 " system could not be solved. Recomputed steps of order 3 and 4 shrink vertex "
-                 "stars; a lower order or a frozen operator does not");
+                 number(ratio) + " of the mean, and " +
+                 (flight > kBlownUp ? "its order-" + std::to_string(options_.order) +
+                                          " step threw a vertex " + number(flight) +
+                                          " times its part's RMS radius"
+                             : "its order-" + std::to_string(options_.order) +
+                                   " system could not be solved") +
+                 ". Recomputed steps of order 3 and 4 shrink vertex stars; a lower order or a "
+                 "frozen operator does not");
         }
         if (!x_.allFinite())
             throw Error("step " + std::to_string(step + 1) +

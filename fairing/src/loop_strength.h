@@ -3,9 +3,9 @@
 // The boundary loops' automatic time step (section 5.3 under issue 11's automatic strength), by
 // direct solves of the loops' systems (not installed).
 //
-// A loop of eq. 11 is a cyclic chain: its implicit system (solver.h: D - lambda K, or
-// D + lambda K P M^-1 K for L^2, on the free loop rows) is banded, and a sparse LDL^T factors it
-// in time linear in the loop's length. So the risk of the loops' s steps is measured exactly at
+// A loop of eq. 11 is a cyclic chain: its implicit system (direct_solve.h: D + lambda C, C =
+// (-1)^p (K M^-1)^(p-1) K for L^p, on the free loop rows) is banded, and a sparse LDL^T factors
+// it in time linear in the loop's length. So the risk of the loops' s steps is measured exactly at
 // 17 time steps over ten decades (every decade, then every quarter decade near the lowest),
 // instead of through auto_strength.h's Lanczos model, which on a few hundred loop vertices of
 // very uneven edges (libcgal-demo's turbine blade: nine in ten loop edges under a fifth of the
@@ -25,8 +25,8 @@
 // tr H is not the filter's divergence: div_d is the Monte-Carlo divergence (Ramani, Blu & Unser
 // 2008), one Rademacher probe along d with the operator assembled again at the probed data.
 //
-// Limits: the loops keep their first step's operator (as fair() applies them); order 1 or 2,
-// implicit (other cases: auto_strength.h). The loops' vertices alone estimate sigma_b; with fewer
+// Limits: the loops keep their first step's operator (as fair() applies them); implicit steps
+// of any order (explicit ones: auto_strength.h). The loops' vertices alone estimate sigma_b; with fewer
 // than 8 of them it is taken as 0.
 #pragma once
 
@@ -47,7 +47,7 @@ struct LoopStrengthProblem {
     const HalfEdgeMesh* mesh = nullptr;  // its boundary loops
     double noise_level = 0;              // sigma, in the positions' units
     double length_unit = 1;              // lambda_dt per unit time step
-    int order = 1;                       // 1 or 2
+    int order = 1;                       // 1 to 4
     int steps = 1;
     // The loop operator at other positions (the Monte-Carlo divergence).
     std::function<SparseOperator(const Positions&)> assemble_at;
