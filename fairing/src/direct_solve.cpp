@@ -110,7 +110,8 @@ Eigen::MatrixXd free_part_centroids(const SparseOperator& op, const Positions& x
     return centroid;
 }
 
-// max over the columns of ||residual|| / ||b||.
+}  // namespace
+
 double relative_residual(const Eigen::MatrixXd& residual, const Eigen::MatrixXd& b) {
     double worst = 0;
     for (int c = 0; c < 3; ++c) {
@@ -119,8 +120,6 @@ double relative_residual(const Eigen::MatrixXd& residual, const Eigen::MatrixXd&
     }
     return worst;
 }
-
-}  // namespace
 
 SolveStats solve_directly(const LinearSystem& system, Positions& x, double max_residual) {
     const SparseOperator& op = *system.op;

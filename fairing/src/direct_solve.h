@@ -61,6 +61,9 @@ bool take_direct_steps(DirectSystem& s, double lambda, int steps, const Eigen::M
                        Eigen::SimplicialLDLT<SparseMatrix>& ldlt, Eigen::MatrixXd& x,
                        Eigen::MatrixXd& rhs);
 
+// The largest over the three columns of ||residual|| / ||b|| (0 for a zero column of b).
+double relative_residual(const Eigen::MatrixXd& residual, const Eigen::MatrixXd& b);
+
 // One step of `system` (order 1 to 4, D = system.diagonal): x's free rows take the result. A
 // result over max_residual is solved again with each part of the free rows that no fixed row
 // touches moved to its centroid (the step commutes with translating such a part), and the

@@ -24,6 +24,15 @@ namespace {
 // section 30); the range reaches three decades past either side.
 constexpr int kLowest = -5, kHighest = 5, kPerDecade = 4;
 constexpr double kProbe = 1e-2;  // the Monte-Carlo probe's size, in noise levels
+// A time step whose factored loop solve (the data's or a probe's) leaves more than this relative
+// residual is not evaluated: the probe's divergence divides the solves' rounding by kProbe times
+// the noise. On libcgal-demo's open turbine blade at half an edge (umbrella, L^4) the residual
+// grew from 7e-7 at time step 10 to 5e-5 at 1000 and 1e-2 at 1e5, where the risk read -22
+// against 22 to 30 elsewhere, and the loops took 1e5 (1.48x the error of the Lanczos model's
+// choice). At order 2 only the dragon's three-vertex sliver holes pass it, on two of its noisy
+// copies: their loop step went from 1e5 to 102 and from 4.7e4 to 8069, and the one-click errors
+// moved by at most 1e-5 of themselves (auto-gap.md, section 41).
+constexpr double kRiskResidual = 1e-5;
 
 // One direction of the loops' error: a unit direction per free loop vertex, the noise level along
 // it, and its Monte-Carlo probe: the data moved by eps along +-direction and the loop system
@@ -134,7 +143,9 @@ double loop_time_step(const LoopStrengthProblem& p) {
     const auto risk_at = [&](int k) -> std::pair<bool, double> {
         const double t = std::pow(10.0, static_cast<double>(k) / kPerDecade);
         const double lambda = t * p.length_unit;
-        if (!take_direct_steps(base, lambda, p.steps, y, ldlt, moved, rhs)) return {false, 0.0};
+        if (!take_direct_steps(base, lambda, p.steps, y, ldlt, moved, rhs) ||
+            !(relative_residual(rhs - base.a * moved, rhs) <= kRiskResidual))
+            return {false, 0.0};
         const Eigen::MatrixXd r = moved - y;
         double total = 0;
         for (Channel* c : {&along, &across}) {
@@ -147,7 +158,8 @@ double loop_time_step(const LoopStrengthProblem& p) {
             total += rss;
             if (!(c->noise > 0)) continue;
             if (!take_direct_steps(c->probed, lambda, p.steps, c->probed_y, c->ldlt, c->moved,
-                            c->rhs))
+                                   c->rhs) ||
+                !(relative_residual(c->rhs - c->probed.a * c->moved, c->rhs) <= kRiskResidual))
                 return {false, 0.0};
             double divergence = n;
             for (int a = 0; a < n; ++a)

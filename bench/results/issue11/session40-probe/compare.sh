@@ -3,8 +3,9 @@
 # SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # auto-gap.md section 40: each filter's one click (no option) on every noisy bench mesh with two
 # CLIs, OLD and NEW; prints same (byte-identical output files), DIFF, or RC with both errors.
+# PATTERN (an extended regular expression, optional): only the meshes whose path matches it.
 M=~/.cache/filter_implicit_fairing/bench-meshes; T=${TMPDIR:-/tmp}
-for f in $(ls $M/dn_*.ply | grep -v "_clean\|_1m_\|1.2m"); do
+for f in $(ls $M/dn_*.ply | grep -v "_clean\|_1m_\|1.2m" | grep -E "${PATTERN:-.}"); do
  for op in umbrella scale-dependent curvature; do
   b=$(basename $f .ply)
   OMP_NUM_THREADS=1 $OLD -q --operator $op $f $T/o_old.ply 2>$T/e_old; ro=$?
