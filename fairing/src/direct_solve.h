@@ -17,9 +17,9 @@
 // Used for the boundary loops' cyclic bands (always: their factor is linear in the loop's
 // length, a band of width 2p + 1; the iterative L^4 solve of libcgal-demo's open turbine blade's
 // loops stalled at residuals of 2e-8 to 4e-5), for their automatic time step (loop_strength.h,
-// every implicit order), and as the surface's fallback when its iterative solve does not converge on a
-// mesh small enough to factor (fairing.cpp, Run::integrate; the factor of an L^p system couples
-// p rings, so its fill grows faster than the mesh).
+// every implicit order), and as the surface's fallback when its iterative solve does not
+// converge on a mesh small enough to factor (fairing.cpp, Run::integrate; the factor of an L^p
+// system couples p rings, so its fill grows faster than the mesh).
 #pragma once
 
 #include "fairing/operators.h"

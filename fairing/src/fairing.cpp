@@ -411,14 +411,14 @@ std::string Run::ill_conditioning(const SparseOperator& op, const std::vector<ch
 }
 
 // How far the step from `from` to x_ moved a vertex, in sizes (size_of, at `from`) of its
-// component; 0 for components of one point. A smoothing step pulls a part in on itself, a vertex
-// about its distance from the part's centre (on 16-vertex patches with a cell of noise, whose
-// loops a step of 100 drew in first, up to 3.8 radii), so past kBlownUp it has blown up: a vertex
-// whose star a recomputed L^3 or L^4 step shrank to almost no area is held to its data with that
-// area only, and the order-p term places it by extrapolation. On libcgal-demo's b9_mesh at a
-// quarter edge of noise (curvature flow, order 4, its loops smoothed) the fourth step's solves
-// converged to 1e-9 and threw vertices of a 1,703-vertex part up to 1,540 mean edges
-// (auto-gap.md, section 41).
+// component; 0 for components of one point. A smoothing step pulls a part in on itself, moving
+// a vertex about its distance from the part's centre (up to 3.8 radii on 16-vertex patches with
+// a cell of noise, whose loops a step of 100 drew in first), so past kBlownUp it has blown up: a
+// vertex whose star a recomputed L^3 or L^4 step shrank to almost no area is held to its data
+// with that area only, and the order-p term places it by extrapolation. On libcgal-demo's
+// b9_mesh at a quarter edge of noise (curvature flow, order 4, its loops smoothed) the fourth
+// step's solves converged to 1e-9 and threw vertices of a 1,703-vertex part up to 1,540 mean
+// edges (auto-gap.md, section 41).
 constexpr double kBlownUp = 10;
 double Run::farthest_flight(const Positions& from) const {
     double farthest = 0;
@@ -1068,7 +1068,8 @@ void Run::choose_time_step() {
 // Nothing is restored on a loop, and it keeps its first step's operator. Implicit steps of every
 // order are measured exactly by direct solves (loop_strength.h); explicit ones by the surface's
 // Lanczos model, which sees only the normals' channel: at orders 3 and 4 it rounded a noisy
-// square's outline by 1.2 cells and drew a hole's loop 0.44 cells in (auto-gap.md, section 41). Returns the Lanczos steps taken; on failure the loops keep the surface's time step.
+// square's outline by 1.2 cells and drew a hole's loop 0.44 cells in (auto-gap.md, section 41).
+// Returns the Lanczos steps taken; on failure the loops keep the surface's time step.
 int Run::choose_curve_time_step(const detail::StrengthProblem& surface, double noise_level) {
     // The loop's weights 1/|e| come from the noisy data and, on a loop sampled finer than the
     // noise, depend on it: the risk takes the Monte-Carlo divergence (auto-gap.md, section 30).
@@ -1180,17 +1181,17 @@ void Run::take_steps() {
             for (int i = 0; i < n_; ++i) ever_free_[i] |= free[i];
             integrate(surface_, free, lambda_dt, step, "surface");
             frozen_from = step;
+            const std::string order = "its order-" + std::to_string(options_.order);
+            const std::string why =
+                flight > kBlownUp ? order + " step threw a vertex " + number(flight) +
+                                        " times its part's RMS radius"
+                                  : order + " system could not be solved";
             warn(std::string(step + 1 < steps ? "steps " : "step ") + std::to_string(step + 1) +
                  (step + 1 < steps ? "-" + std::to_string(steps) : std::string()) +
                  " kept the operator of step " + std::to_string(step) +
                  " (frozen, section 4.3): assembled again, its smallest vertex " +
                  (options_.op == Operator::CurvatureFlow ? "area" : "mass") + " was " +
-                 number(ratio) + " of the mean, and " +
-                 (flight > kBlownUp ? "its order-" + std::to_string(options_.order) +
-                                          " step threw a vertex " + number(flight) +
-                                          " times its part's RMS radius"
-                             : "its order-" + std::to_string(options_.order) +
-                                   " system could not be solved") +
+                 number(ratio) + " of the mean, and " + why +
                  ". Recomputed steps of order 3 and 4 shrink vertex stars; a lower order or a "
                  "frozen operator does not");
         }

@@ -26,8 +26,8 @@
 // 2008), one Rademacher probe along d with the operator assembled again at the probed data.
 //
 // Limits: the loops keep their first step's operator (as fair() applies them); implicit steps
-// of any order (explicit ones: auto_strength.h). The loops' vertices alone estimate sigma_b; with fewer
-// than 8 of them it is taken as 0.
+// of any order (explicit ones: auto_strength.h). The loops' vertices alone estimate sigma_b;
+// with fewer than 8 of them it is taken as 0.
 #pragma once
 
 #include "fairing/operators.h"

@@ -196,8 +196,8 @@ TEST(NonConverging, RecomputedHighOrderStepsKeepTheLastOperatorThatSolved) {
 // A recomputed L^4 step can also solve well and still blow up: on tiny noisy open patches whose
 // loops a strong step draws in first, the later steps' solves converged and threw vertices up to
 // 1e12 times the patch's size (and on libcgal-demo's b9_mesh, one click at order 4, vertices of a
-// 1,703-vertex part up to 1,540 mean edges). A step that throws a vertex more than ten times its part's
-// RMS radius is taken again on the last operator that solved, as one that could not be solved.
+// 1,703-vertex part up to 1,540 mean edges). A step that throws a vertex more than ten times its
+// part's RMS radius is taken again on the last operator that solved, as one that could not be.
 TEST(NonConverging, RecomputedHighOrderStepThatBlowsUpKeepsTheLastOperator) {
     int retaken = 0;
     for (std::uint64_t seed = 1; seed <= 6; ++seed) {
