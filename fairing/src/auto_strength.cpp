@@ -1548,14 +1548,9 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sk
     return s;
 }
 
-// The minimizer of SURE on the grid, refined by a parabola in log(lambda) through its
-// neighbours; or, with `strongest_within_error`, the strongest grid step whose risk lies within
-// one standard error of the minimum (Breiman, Friedman, Olshen & Stone's one-standard-error
-// rule, "Classification and Regression Trees", 1984, section 3.4.3). The standard error of the
-// difference of two risks is taken as that of two nested projections' Mallows C_p,
-// sigma^2 sqrt(2 |df_a - df_b|) (||(P_b - P_a) y||^2 is sigma^2 chi^2 with |df_a - df_b| degrees
-// of freedom when the signal lies in both), df being the divergence.
-void choose(StrengthEstimate& e, bool strongest_within_error) {
+}  // namespace
+
+void choose(StrengthEstimate& e, bool strongest_within_error, double reach) {
     const int m = static_cast<int>(e.grid.size());
     std::vector<double> risk(m);
     const double s2 = e.noise_level * e.noise_level;
@@ -1563,7 +1558,7 @@ void choose(StrengthEstimate& e, bool strongest_within_error) {
     const int best = argmin(risk);
     if (strongest_within_error) {
         int strongest = best;
-        for (int g = best + 1; g < m; ++g)
+        for (int g = best + 1; g < m && e.grid[g] <= reach * e.grid[best]; ++g)
             if (risk[g] <= risk[best] + s2 * std::sqrt(2 * std::abs(e.trace[best] - e.trace[g])))
                 strongest = g;
         if (strongest != best) {
@@ -1583,7 +1578,6 @@ void choose(StrengthEstimate& e, bool strongest_within_error) {
     e.trace_fraction = e.trace[best] / e.data_count;
 }
 
-}  // namespace
 
 // The restoration's fields (see Sketch::Restoration) for the components fair() restores.
 Sketch::Restoration restoration(const StrengthProblem& p, const Positions& normals) {
@@ -1797,8 +1791,11 @@ StrengthEstimate risk_minimum(const StrengthProblem& p, const Positions& normals
     // the torus and the flat patch (56 cases) 1.0071 -> 1.0173, worst 1.034 -> 1.075 (section
     // 36). The scale-dependent steps' L^2 keep the minimizer: their default got worse with it
     // (section 14), and so did single recomputed steps.
+    // The curvature flow's L^2 steps reach at most kLaterRuleReach times the minimizer (section
+    // 42).
     const bool linear = !p.assemble_at;
-    choose(e, !p.explicit_integration && (linear || (p.pilot && (p.order == 1 || later))));
+    choose(e, !p.explicit_integration && (linear || (p.pilot && (p.order == 1 || later))),
+           later ? kLaterRuleReach : std::numeric_limits<double>::infinity());
     if (!ctx.weight_root.empty() && !uniform && e.trace_fraction < kWeightModelKeeps &&
         count <= kWeightedDirectVertices) {
         SparseOperator perturbed;

@@ -63,8 +63,8 @@
 //   Monte-Carlo divergence perturbs the data and builds the same mean at the perturbed data.
 //   The mean overstates what strong steps cost on smooth shapes, where the risk is flat about its
 //   minimum: for several first-order steps the choice is the strongest step whose risk lies
-//   within one standard error of the minimum (Breiman et al.'s rule, auto_strength.cpp, choose),
-//   and so for the curvature flow's L^2 steps below; the scale-dependent L^2 steps keep the
+//   within one standard error of the minimum (Breiman et al.'s rule, choose below), and so for
+//   the curvature flow's L^2 steps below, up to kLaterRuleReach times the minimizer; the scale-dependent L^2 steps keep the
 //   minimizer. (The umbrella takes the rule too: its risk is the error along the normals, whose
 //   best step on featured and detailed scans is weaker than the distance to the surface's.) For the
 //   curvature flow's L^2 steps the two halves of the risk are split: the residual (what the
@@ -109,6 +109,7 @@
 #include "fairing/operators.h"
 
 #include <functional>
+#include <limits>
 #include <vector>
 
 namespace fairing {
@@ -206,6 +207,35 @@ Positions strength_normals(const StrengthProblem& problem);
 double noise_level(const StrengthProblem& problem, const Positions& normals);
 
 StrengthEstimate estimate_strength(const StrengthProblem& problem);
+
+// How far the one-standard-error rule may take the curvature flow's L^2 steps past the risk's
+// minimizer (choose, `reach`). On a finely sampled smooth shape their risk is flat over a
+// decade, and the rule ran to the end of the grid, 2.1-2.7x the minimizer; but strong
+// recomputed steps there draw the mesh towards the discrete flow's own rest shape (on the 51 k
+// two-density sphere at 0.1 edge, the top tenth of its finer half sinks by 1e-4 radii in the
+// mean at 5x the best step), which the model of the steps, linear in the data, does not hold. Capped at 1.5x (three grid steps), the
+// 51 k sphere's one click goes from 1.181 / 1.106 of its best fixed step's error at 0.1 / a
+// quarter edge to 1.086 / 1.029 (seed 2: 1.063 / 1.064 -> 1.031 / 1.001; a third draw at a
+// quarter edge 1.177 -> 1.028). Of the study's 135 scan and torus cases one reached past 1.44x
+// (b9 in all directions, +0.4 %); the 13 k sphere's reaches of 1.6-2.1x lose up to 2.8 %, the
+// 3 k flat patch's up to 4.5 %, where the infinite plane forgives any strong step (a 51 k-face
+// patch gains 0.2-0.7 %). Recomputed first-order steps keep the whole rule: their mean-operator
+// model overstates what strong steps cost, and the cap lost up to 17 % on the 3 k and 13 k
+// spheres. Not reached: other 51 k spheres whose risk minimizer itself lies 2-6x past the best
+// step (auto-gap.md, section 42).
+constexpr double kLaterRuleReach = 1.5;
+
+// The choice on e's risk curve (its grid, rss, trace and noise_level; sets time_step and
+// trace_fraction): the minimizer of SURE on the grid, refined by a parabola in log(lambda)
+// through its neighbours; or, with `strongest_within_error`, the strongest grid step up to
+// `reach` times the minimizer whose risk lies within one standard error of the minimum
+// (Breiman, Friedman, Olshen & Stone's one-standard-error rule, "Classification and Regression
+// Trees", 1984, section 3.4.3). The standard error of the difference of two risks is taken as
+// that of two nested projections' Mallows C_p, sigma^2 sqrt(2 |df_a - df_b|) (||(P_b - P_a) y||^2
+// is sigma^2 chi^2 with |df_a - df_b| degrees of freedom when the signal lies in both), df being
+// the divergence.
+void choose(StrengthEstimate& e, bool strongest_within_error,
+            double reach = std::numeric_limits<double>::infinity());
 
 }  // namespace detail
 }  // namespace fairing

@@ -618,6 +618,44 @@ TEST(AutoStrength, CurvatureFlowStepsTakeTheStrongestStepWithinTheRiskError) {
     EXPECT_LT(r.worst, 1.1);
 }
 
+// The rule itself on a risk curve (auto_strength.h, choose) laid out as the estimate's grid (16
+// steps over 6.25x): least at step 4, then within one standard error of that to the end. The
+// whole rule takes the last step; with kLaterRuleReach (1.5x, the curvature flow's L^2 steps)
+// the third past the minimizer (1.13^3 = 1.44x; the fourth is 1.63x); a step past the standard
+// error is skipped, not a stop; without the rule the minimizer, refined between its neighbours.
+TEST(AutoStrength, TheRuleTakesTheStrongestStepWithinOneStandardErrorUpToItsReach) {
+    using fairing::detail::StrengthEstimate;
+    StrengthEstimate e;
+    e.noise_level = 1;
+    e.data_count = 100;
+    const auto set_risk = [&](int g, double risk) { e.rss[g] = risk - 2 * e.trace[g]; };
+    for (int g = 0; g < 16; ++g) {
+        e.grid.push_back(1000 * std::pow(6.25, g / 15.0));
+        e.trace.push_back(60.0 - 2 * g);  // fewer degrees of freedom at stronger steps
+        e.rss.push_back(0);
+        // Past the minimum the risk rises by 0.01 per step; one standard error there is
+        // sqrt(2 * 2 * (g - 4)), at least 2.
+        set_risk(g, g < 4 ? 100 + 5.0 * (4 - g) : 100 + 0.01 * (g - 4));
+    }
+    StrengthEstimate whole = e, reach = e, minimizer = e;
+    fairing::detail::choose(whole, true);
+    EXPECT_EQ(whole.time_step, e.grid[15]);
+    fairing::detail::choose(reach, true, fairing::detail::kLaterRuleReach);
+    EXPECT_EQ(reach.time_step, e.grid[7]);
+    EXPECT_EQ(reach.trace_fraction, e.trace[7] / e.data_count);
+    fairing::detail::choose(minimizer, false, fairing::detail::kLaterRuleReach);
+    EXPECT_GT(minimizer.time_step, e.grid[3]);
+    EXPECT_LT(minimizer.time_step, e.grid[5]);
+
+    set_risk(7, 100 + 4.0);  // one standard error there: sqrt(2 * (52 - 46)) = 3.46
+    reach = e;
+    fairing::detail::choose(reach, true, fairing::detail::kLaterRuleReach);
+    EXPECT_EQ(reach.time_step, e.grid[6]);
+    whole = e;
+    fairing::detail::choose(whole, true);
+    EXPECT_EQ(whole.time_step, e.grid[15]);
+}
+
 // fair() restores the volume after each of the curvature flow's recomputed L^2 steps and rescales
 // a step that loses more than kMaxOffsetChange; on a sphere the best step lies just before that
 // switch, and past it the error jumps. The estimate places the switch per step as fair() does

@@ -57,5 +57,6 @@ def one(c):
         for lab, o in files:
             out[lab] = e[o]["rms"]; os.remove(o)
     print(json.dumps(out), flush=True)
-with ThreadPoolExecutor(int(os.environ.get("JOBS", "2"))) as ex:
-    list(ex.map(one, cases))
+if __name__ == "__main__":
+    with ThreadPoolExecutor(int(os.environ.get("JOBS", "2"))) as ex:
+        list(ex.map(one, cases))
