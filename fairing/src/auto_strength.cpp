@@ -1550,6 +1550,7 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sk
 
 }  // namespace
 
+// The rule and its reach: auto_strength.h.
 void choose(StrengthEstimate& e, bool strongest_within_error, double reach) {
     const int m = static_cast<int>(e.grid.size());
     std::vector<double> risk(m);
@@ -1577,7 +1578,6 @@ void choose(StrengthEstimate& e, bool strongest_within_error, double reach) {
     e.time_step = std::exp(log_lambda);
     e.trace_fraction = e.trace[best] / e.data_count;
 }
-
 
 // The restoration's fields (see Sketch::Restoration) for the components fair() restores.
 Sketch::Restoration restoration(const StrengthProblem& p, const Positions& normals) {

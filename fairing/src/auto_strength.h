@@ -62,16 +62,16 @@
 //   and masses, so the mean is one symmetric operator and one Lanczos process serves). The
 //   Monte-Carlo divergence perturbs the data and builds the same mean at the perturbed data.
 //   The mean overstates what strong steps cost on smooth shapes, where the risk is flat about its
-//   minimum: for several first-order steps the choice is the strongest step whose risk lies
-//   within one standard error of the minimum (Breiman et al.'s rule, choose below), and so for
-//   the curvature flow's L^2 steps below, up to kLaterRuleReach times the minimizer; the scale-dependent L^2 steps keep the
-//   minimizer. (The umbrella takes the rule too: its risk is the error along the normals, whose
-//   best step on featured and detailed scans is weaker than the distance to the surface's.) For the
-//   curvature flow's L^2 steps the two halves of the risk are split: the residual (what the
-//   steps do to the shape) comes from the later steps' operator alone, since their smoother
-//   weights undo the damage the first step's noisy ones do to a smooth shape; the divergence
-//   (how the steps respond to the noise) from the mean operator, whose first share carries the
-//   weights' dependence on the noise. One more
+//   minimum: for several first-order steps the choice is the strongest step whose risk lies within
+//   one standard error of the minimum (Breiman et al.'s rule, choose below), and so for the
+//   curvature flow's L^2 steps below, up to kLaterRuleReach times the minimizer; the
+//   scale-dependent L^2 steps keep the minimizer. (The umbrella takes the rule too: its risk is the
+//   error along the normals, whose best step on featured and detailed scans is weaker than the
+//   distance to the surface's.) For the curvature flow's L^2 steps the two halves of the risk are
+//   split: the residual (what the steps do to the shape) comes from the later steps' operator
+//   alone, since their smoother weights undo the damage the first step's noisy ones do to a smooth
+//   shape; the divergence (how the steps respond to the noise) from the mean operator, whose first
+//   share carries the weights' dependence on the noise. One more
 //   Lanczos process (the movement on the later operator, with its own sketch) steps beside the
 //   other two in their pass over the operator's pattern and their sketch's pass, as many steps
 //   as they take, its weights formed from the mean's and the first step's: on the 1 M-face
@@ -209,20 +209,20 @@ double noise_level(const StrengthProblem& problem, const Positions& normals);
 StrengthEstimate estimate_strength(const StrengthProblem& problem);
 
 // How far the one-standard-error rule may take the curvature flow's L^2 steps past the risk's
-// minimizer (choose, `reach`). On a finely sampled smooth shape their risk is flat over a
-// decade, and the rule ran to the end of the grid, 2.1-2.7x the minimizer; but strong
-// recomputed steps there draw the mesh towards the discrete flow's own rest shape (on the 51 k
-// two-density sphere at 0.1 edge, the top tenth of its finer half sinks by 1e-4 radii in the
-// mean at 5x the best step), which the model of the steps, linear in the data, does not hold. Capped at 1.5x (three grid steps), the
-// 51 k sphere's one click goes from 1.181 / 1.106 of its best fixed step's error at 0.1 / a
-// quarter edge to 1.086 / 1.029 (seed 2: 1.063 / 1.064 -> 1.031 / 1.001; a third draw at a
-// quarter edge 1.177 -> 1.028). Of the study's 135 scan and torus cases one reached past 1.44x
-// (b9 in all directions, +0.4 %); the 13 k sphere's reaches of 1.6-2.1x lose up to 2.8 %, the
-// 3 k flat patch's up to 4.5 %, where the infinite plane forgives any strong step (a 51 k-face
-// patch gains 0.2-0.7 %). Recomputed first-order steps keep the whole rule: their mean-operator
-// model overstates what strong steps cost, and the cap lost up to 17 % on the 3 k and 13 k
-// spheres. Not reached: other 51 k spheres whose risk minimizer itself lies 2-6x past the best
-// step (auto-gap.md, section 42).
+// minimizer (choose, `reach`). On a finely sampled smooth shape their risk is flat over a decade,
+// and the rule ran to the end of the grid, 2.1-2.7x the minimizer; but strong recomputed steps
+// there draw the mesh towards the discrete flow's own rest shape (on the 51 k two-density sphere at
+// 0.1 edge, the top tenth of its finer half sinks by 1e-4 radii in the mean at 5x the best step),
+// which the model of the steps, linear in the data, does not hold. Capped at 1.5x (three grid
+// steps), the 51 k sphere's one click goes from 1.181 / 1.106 of its best fixed step's error at 0.1
+// / a quarter edge to 1.086 / 1.029 (seed 2: 1.063 / 1.064 -> 1.031 / 1.001; a third draw at a
+// quarter edge 1.177 -> 1.028). Of the study's 135 scan and torus cases one reached past 1.44x (b9
+// in all directions, +0.4 %); the 13 k sphere's reaches of 1.6-2.1x lose up to 2.8 %, the 3 k flat
+// patch's up to 4.5 %, where the infinite plane forgives any strong step (a 51 k-face patch gains
+// 0.2-0.7 %). Recomputed first-order steps keep the whole rule: their mean-operator model
+// overstates what strong steps cost, and the cap lost up to 17 % on the 3 k and 13 k spheres. Not
+// reached: other 51 k spheres whose risk minimizer itself lies 2-6x past the best step
+// (auto-gap.md, section 42).
 constexpr double kLaterRuleReach = 1.5;
 
 // The choice on e's risk curve (its grid, rss, trace and noise_level; sets time_step and
