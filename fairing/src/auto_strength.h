@@ -220,9 +220,10 @@ StrengthEstimate estimate_strength(const StrengthProblem& problem);
 // in all directions, +0.4 %); the 13 k sphere's reaches of 1.6-2.1x lose up to 2.8 %, the 3 k flat
 // patch's up to 4.5 %, where the infinite plane forgives any strong step (a 51 k-face patch gains
 // 0.2-0.7 %). Recomputed first-order steps keep the whole rule: their mean-operator model
-// overstates what strong steps cost, and the cap lost up to 17 % on the 3 k and 13 k spheres. Not
-// reached: other 51 k spheres whose risk minimizer itself lies 2-6x past the best step
-// (auto-gap.md, section 42).
+// overstates what strong steps cost, and the cap lost up to 17 % on the 3 k and 13 k spheres.
+// With two L^2 steps it cost the 13 k sphere in all directions 12 % once (seed 2), where the
+// minimizer lay far below the best step. Not reached: other 51 k spheres whose risk minimizer
+// itself lies 2-6x past the best step (auto-gap.md, section 42).
 constexpr double kLaterRuleReach = 1.5;
 
 // The choice on e's risk curve (its grid, rss, trace and noise_level; sets time_step and
