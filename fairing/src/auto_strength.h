@@ -223,7 +223,7 @@ StrengthEstimate estimate_strength(const StrengthProblem& problem);
 // overstates what strong steps cost, and the cap lost up to 17 % on the 3 k and 13 k spheres.
 // With two L^2 steps it cost the 13 k sphere in all directions 12 % once (seed 2), where the
 // minimizer lay far below the best step. Not reached: other 51 k spheres whose risk minimizer
-// itself lies 2-6x past the best step (auto-gap.md, section 42).
+// itself lies up to 6x past the best step (auto-gap.md, section 42).
 constexpr double kLaterRuleReach = 1.5;
 
 // The choice on e's risk curve (its grid, rss, trace and noise_level; sets time_step and
