@@ -17,6 +17,7 @@
 #include <limits>
 #include <memory>
 #include <numeric>
+#include <unordered_map>
 
 namespace fairing {
 namespace detail {
@@ -96,9 +97,28 @@ double median_absolute_deviation(std::vector<double>& v) {
 // The normal component of the uniform bi-Laplacian at every vertex whose two-ring is interior,
 // divided by the norm of its stencil (so every value has the noise's variance), for vertices
 // with use[i] (all when `use` is empty).
-std::vector<double> normalized_bilaplacian(const SparseOperator& op, const HalfEdgeMesh& mesh,
-                                           const Positions& x, const Positions& normals,
-                                           const std::vector<char>& use, bool strict) {
+// types[k] is the combinatorial type of the vertex of values[k] (vertex_type).
+struct NormalizedValues {
+    std::vector<double> values;
+    std::vector<std::uint64_t> types;
+};
+
+// A vertex's combinatorial type: its valence and how many of its neighbours have each valence
+// (3 or less, 4 ... 9, 10 or more), packed exactly up to 63 neighbours per class.
+std::uint64_t vertex_type(const SparseOperator& op, const std::vector<int>& valences, int i,
+                          int n) {
+    std::array<int, 8> classes{};
+    for (int k = op.row_start[i]; k < op.row_start[i + 1]; ++k)
+        if (op.column[k] < n) ++classes[static_cast<std::size_t>(
+                                  std::min(std::max(valences[op.column[k]], 3), 10) - 3)];
+    std::uint64_t type = static_cast<std::uint64_t>(std::min(valences[i], 255));
+    for (int c : classes) type = (type << 6) | static_cast<std::uint64_t>(std::min(c, 63));
+    return type;
+}
+
+NormalizedValues normalized_bilaplacian(const SparseOperator& op, const HalfEdgeMesh& mesh,
+                                        const Positions& x, const Positions& normals,
+                                        const std::vector<char>& use, bool strict) {
     const int n = mesh.num_vertices();
     std::vector<int> m(n);
     Positions lx(n, 3);
@@ -110,7 +130,8 @@ std::vector<double> normalized_bilaplacian(const SparseOperator& op, const HalfE
         lx.row(i) = m[i] > 0 ? Eigen::RowVector3d(sum / m[i] - x.row(i)) : Eigen::RowVector3d::Zero();
     }
     const auto interior = [&](int i) { return m[i] >= 3 && !mesh.is_boundary_vertex(i); };
-    std::vector<double> coef(n, 0.0), values;
+    std::vector<double> coef(n, 0.0);
+    NormalizedValues out;
     std::vector<char> listed(n, 0);
     std::vector<int> touched;
     const auto add = [&](int j, double c) {
@@ -142,9 +163,48 @@ std::vector<double> normalized_bilaplacian(const SparseOperator& op, const HalfE
             listed[j] = 0;
         }
         touched.clear();
-        if (norm2 > 0) values.push_back(normals.row(i).dot(bilaplacian) / std::sqrt(norm2));
+        if (norm2 > 0) {
+            out.values.push_back(normals.row(i).dot(bilaplacian) / std::sqrt(norm2));
+            out.types.push_back(vertex_type(op, m, i, n));
+        }
     }
-    return values;
+    return out;
+}
+
+// Median of |v - the median of v's stratum| (v is reordered). A stratum holds the values of one
+// vertex type (vertex_type) when at least kStratum share it, else of one valence, else all the
+// rest together.
+double stratified_median_absolute_deviation(NormalizedValues& nv) {
+    constexpr int kStratum = 64;
+    std::vector<double>& v = nv.values;
+    std::vector<std::uint64_t>& key = nv.types;
+    const auto pool = [&key](const auto& coarser) {
+        std::unordered_map<std::uint64_t, int> count;
+        for (std::uint64_t k : key) ++count[k];
+        for (std::uint64_t& k : key)
+            if (count[k] < kStratum) k = coarser(k);
+    };
+    // Valences fit in 8 bits; the coarser keys set bit 62 and bit 63 so as to meet no type.
+    pool([](std::uint64_t k) { return (std::uint64_t{1} << 62) | (k >> 48); });
+    pool([](std::uint64_t) { return std::uint64_t{1} << 63; });
+    std::unordered_map<std::uint64_t, std::size_t> id;
+    for (std::uint64_t k : key) id.emplace(k, id.size());
+    std::vector<std::size_t> start(id.size() + 1, 0);
+    for (std::uint64_t k : key) ++start[id[k] + 1];
+    std::partial_sum(start.begin(), start.end(), start.begin());
+    std::vector<double> grouped(v.size());
+    std::vector<std::size_t> next(start.begin(), start.end() - 1);
+    for (std::size_t k = 0; k < v.size(); ++k) grouped[next[id[key[k]]]++] = v[k];
+    v.clear();
+    for (std::size_t g = 0; g + 1 < start.size(); ++g) {
+        const auto first = grouped.begin() + static_cast<std::ptrdiff_t>(start[g]);
+        const auto last = grouped.begin() + static_cast<std::ptrdiff_t>(start[g + 1]);
+        const auto middle = first + (last - first) / 2;
+        std::nth_element(first, middle, last);
+        const double median = *middle;
+        for (auto a = first; a != last; ++a) v.push_back(*a - median);
+    }
+    return median_absolute_deviation(v);
 }
 
 }  // namespace
@@ -153,10 +213,10 @@ double estimate_noise(const SparseOperator& op, const HalfEdgeMesh& mesh, const 
                       const Positions& normals, const std::vector<char>& use) {
     // Too few qualifying vertices for a median: widen the set rather than guess.
     constexpr std::size_t kEnough = 16;
-    std::vector<double> v = normalized_bilaplacian(op, mesh, x, normals, use, true);
-    if (v.size() < kEnough) v = normalized_bilaplacian(op, mesh, x, normals, {}, true);
-    if (v.size() < kEnough) v = normalized_bilaplacian(op, mesh, x, normals, {}, false);
-    return 1.482602218505602 * median_absolute_deviation(v);
+    NormalizedValues v = normalized_bilaplacian(op, mesh, x, normals, use, true);
+    if (v.values.size() < kEnough) v = normalized_bilaplacian(op, mesh, x, normals, {}, true);
+    if (v.values.size() < kEnough) v = normalized_bilaplacian(op, mesh, x, normals, {}, false);
+    return 1.482602218505602 * stratified_median_absolute_deviation(v);
 }
 
 namespace {

@@ -102,6 +102,39 @@ inline TriangleMesh torus_grid(int nu, int nv, double R = 3.0, double r = 1.0) {
     return m;
 }
 
+// The same torus grid (nu, nv even) with each quad split along the diagonal through its corner
+// (u,v) where u + v is even, the "union jack": valence 8 where u + v is even, 4 where it is odd,
+// as in CAD and parametric tessellations. tube_offset(u, v) is added to the tube radius r there,
+// which moves the vertex along the torus's normal.
+template <class Offset>
+TriangleMesh union_jack_torus(int nu, int nv, double R, double r, const Offset& tube_offset) {
+    TriangleMesh m = torus_grid(nu, nv, R, r);
+    for (int v = 0; v < nv; ++v) {
+        for (int u = 0; u < nu; ++u) {
+            const double a = 2 * kPi * u / nu, b = 2 * kPi * v / nv;
+            const double rho = r + tube_offset(u, v);
+            set_row(m.positions, torus_index(u, v, nu, nv),
+                    Vec3((R + rho * std::cos(b)) * std::cos(a),
+                         (R + rho * std::cos(b)) * std::sin(a), rho * std::sin(b)));
+        }
+    }
+    m.triangles.clear();
+    for (int v = 0; v < nv; ++v) {
+        for (int u = 0; u < nu; ++u) {
+            const int p00 = torus_index(u, v, nu, nv), p10 = torus_index(u + 1, v, nu, nv);
+            const int p11 = torus_index(u + 1, v + 1, nu, nv), p01 = torus_index(u, v + 1, nu, nv);
+            if ((u + v) % 2 == 0) {
+                m.triangles.push_back({p00, p10, p11});
+                m.triangles.push_back({p00, p11, p01});
+            } else {
+                m.triangles.push_back({p00, p10, p01});
+                m.triangles.push_back({p10, p11, p01});
+            }
+        }
+    }
+    return m;
+}
+
 inline TriangleMesh icosahedron(double radius = 1.0) {
     const double t = (1.0 + std::sqrt(5.0)) / 2.0;
     const double raw[12][3] = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
