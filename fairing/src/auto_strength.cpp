@@ -94,9 +94,6 @@ double median_absolute_deviation(std::vector<double>& v) {
     return *middle;
 }
 
-// The normal component of the uniform bi-Laplacian at every vertex whose two-ring is interior,
-// divided by the norm of its stencil (so every value has the noise's variance), for vertices
-// with use[i] (all when `use` is empty).
 // types[k] is the combinatorial type of the vertex of values[k] (vertex_type).
 struct NormalizedValues {
     std::vector<double> values;
@@ -116,6 +113,9 @@ std::uint64_t vertex_type(const SparseOperator& op, const std::vector<int>& vale
     return type;
 }
 
+// The normal component of the uniform bi-Laplacian at every vertex whose two-ring is interior,
+// divided by the norm of its stencil (so every value has the noise's variance), for vertices
+// with use[i] (all when `use` is empty), each with its vertex's type.
 NormalizedValues normalized_bilaplacian(const SparseOperator& op, const HalfEdgeMesh& mesh,
                                         const Positions& x, const Positions& normals,
                                         const std::vector<char>& use, bool strict) {
@@ -184,7 +184,8 @@ double stratified_median_absolute_deviation(NormalizedValues& nv) {
         for (std::uint64_t& k : key)
             if (count[k] < kStratum) k = coarser(k);
     };
-    // Valences fit in 8 bits; the coarser keys set bit 62 and bit 63 so as to meet no type.
+    // A type fills bits 0-55 (its valence bits 48-55); the coarser keys set bit 62 or bit 63, so
+    // they meet no type.
     pool([](std::uint64_t k) { return (std::uint64_t{1} << 62) | (k >> 48); });
     pool([](std::uint64_t) { return std::uint64_t{1} << 63; });
     std::unordered_map<std::uint64_t, std::size_t> id;

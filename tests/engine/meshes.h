@@ -64,6 +64,17 @@ inline void set_row(Positions& p, int i, const Vec3& v) { p.row(i) = v.transpose
 // ------------------------------------------------------------------------------------------
 // Generators.
 
+// The quad a b c d (counter-clockwise) as two triangles, split along a-c or else along b-d.
+inline void add_quad(TriangleMesh& m, int a, int b, int c, int d, bool along_ac) {
+    if (along_ac) {
+        m.triangles.push_back({a, b, c});
+        m.triangles.push_back({a, c, d});
+    } else {
+        m.triangles.push_back({a, b, d});
+        m.triangles.push_back({b, c, d});
+    }
+}
+
 // Regular torus grid, nu x nv vertices, valence 6 everywhere: every quad
 // (u,v) (u+1,v) (u+1,v+1) (u,v+1) is split along the same diagonal (u,v)-(u+1,v+1), so the
 // neighbours of (u,v) are at the offsets (+-1,0), (0,+-1), (1,1), (-1,-1).
@@ -95,8 +106,7 @@ inline TriangleMesh torus_grid(int nu, int nv, double R = 3.0, double r = 1.0) {
             const int p00 = torus_index(u, v, nu, nv), p10 = torus_index(u + 1, v, nu, nv);
             const int p11 = torus_index(u + 1, v + 1, nu, nv), p01 = torus_index(u, v + 1, nu, nv);
             // d/du x d/dv is the outward normal of this parameterization.
-            m.triangles.push_back({p00, p10, p11});
-            m.triangles.push_back({p00, p11, p01});
+            add_quad(m, p00, p10, p11, p01, true);
         }
     }
     return m;
@@ -123,13 +133,7 @@ TriangleMesh union_jack_torus(int nu, int nv, double R, double r, const Offset& 
         for (int u = 0; u < nu; ++u) {
             const int p00 = torus_index(u, v, nu, nv), p10 = torus_index(u + 1, v, nu, nv);
             const int p11 = torus_index(u + 1, v + 1, nu, nv), p01 = torus_index(u, v + 1, nu, nv);
-            if ((u + v) % 2 == 0) {
-                m.triangles.push_back({p00, p10, p11});
-                m.triangles.push_back({p00, p11, p01});
-            } else {
-                m.triangles.push_back({p00, p10, p01});
-                m.triangles.push_back({p10, p11, p01});
-            }
+            add_quad(m, p00, p10, p11, p01, (u + v) % 2 == 0);
         }
     }
     return m;
@@ -255,13 +259,7 @@ inline TriangleMesh grid(int nx, int ny, double sx = 1.0, double sy = 1.0, Rng* 
         for (int i = 0; i < nx; ++i) {
             const int a = grid_index(i, j, nx), b = grid_index(i + 1, j, nx);
             const int c = grid_index(i + 1, j + 1, nx), d = grid_index(i, j + 1, nx);
-            if (rng && rng->uniform() < 0.5) {
-                m.triangles.push_back({a, b, d});
-                m.triangles.push_back({b, c, d});
-            } else {
-                m.triangles.push_back({a, b, c});
-                m.triangles.push_back({a, c, d});
-            }
+            add_quad(m, a, b, c, d, !(rng && rng->uniform() < 0.5));
         }
     }
     return m;
