@@ -90,35 +90,14 @@ inline const std::array<std::array<int, 2>, 6>& torus_neighbour_offsets() {
     return offsets;
 }
 
-inline TriangleMesh torus_grid(int nu, int nv, double R = 3.0, double r = 1.0) {
+// A torus grid of nu x nv vertices: tube_offset(u, v) is added to the tube radius r at (u,v),
+// which moves the vertex along the torus's normal, and the quad (u,v) (u+1,v) (u+1,v+1) (u,v+1)
+// is split along (u,v)-(u+1,v+1) where along_first_diagonal(u, v), else along the other one.
+template <class Offset, class Split>
+TriangleMesh torus_mesh(int nu, int nv, double R, double r, const Offset& tube_offset,
+                        const Split& along_first_diagonal) {
     TriangleMesh m;
     m.positions.resize(nu * nv, 3);
-    for (int v = 0; v < nv; ++v) {
-        for (int u = 0; u < nu; ++u) {
-            const double a = 2 * kPi * u / nu, b = 2 * kPi * v / nv;
-            set_row(m.positions, torus_index(u, v, nu, nv),
-                    Vec3((R + r * std::cos(b)) * std::cos(a), (R + r * std::cos(b)) * std::sin(a),
-                         r * std::sin(b)));
-        }
-    }
-    for (int v = 0; v < nv; ++v) {
-        for (int u = 0; u < nu; ++u) {
-            const int p00 = torus_index(u, v, nu, nv), p10 = torus_index(u + 1, v, nu, nv);
-            const int p11 = torus_index(u + 1, v + 1, nu, nv), p01 = torus_index(u, v + 1, nu, nv);
-            // d/du x d/dv is the outward normal of this parameterization.
-            add_quad(m, p00, p10, p11, p01, true);
-        }
-    }
-    return m;
-}
-
-// The same torus grid (nu, nv even) with each quad split along the diagonal through its corner
-// (u,v) where u + v is even, the "union jack": valence 8 where u + v is even, 4 where it is odd,
-// as in CAD and parametric tessellations. tube_offset(u, v) is added to the tube radius r there,
-// which moves the vertex along the torus's normal.
-template <class Offset>
-TriangleMesh union_jack_torus(int nu, int nv, double R, double r, const Offset& tube_offset) {
-    TriangleMesh m = torus_grid(nu, nv, R, r);
     for (int v = 0; v < nv; ++v) {
         for (int u = 0; u < nu; ++u) {
             const double a = 2 * kPi * u / nu, b = 2 * kPi * v / nv;
@@ -128,15 +107,27 @@ TriangleMesh union_jack_torus(int nu, int nv, double R, double r, const Offset& 
                          (R + rho * std::cos(b)) * std::sin(a), rho * std::sin(b)));
         }
     }
-    m.triangles.clear();
     for (int v = 0; v < nv; ++v) {
         for (int u = 0; u < nu; ++u) {
             const int p00 = torus_index(u, v, nu, nv), p10 = torus_index(u + 1, v, nu, nv);
             const int p11 = torus_index(u + 1, v + 1, nu, nv), p01 = torus_index(u, v + 1, nu, nv);
-            add_quad(m, p00, p10, p11, p01, (u + v) % 2 == 0);
+            // d/du x d/dv is the outward normal of this parameterization.
+            add_quad(m, p00, p10, p11, p01, along_first_diagonal(u, v));
         }
     }
     return m;
+}
+
+inline TriangleMesh torus_grid(int nu, int nv, double R = 3.0, double r = 1.0) {
+    return torus_mesh(nu, nv, R, r, [](int, int) { return 0.0; }, [](int, int) { return true; });
+}
+
+// The torus grid (nu, nv even) with each quad split along the diagonal through its corner (u,v)
+// where u + v is even, the "union jack": valence 8 where u + v is even, 4 where it is odd, as in
+// CAD and parametric tessellations; tube_offset as in torus_mesh.
+template <class Offset>
+TriangleMesh union_jack_torus(int nu, int nv, double R, double r, const Offset& tube_offset) {
+    return torus_mesh(nu, nv, R, r, tube_offset, [](int u, int v) { return (u + v) % 2 == 0; });
 }
 
 inline TriangleMesh icosahedron(double radius = 1.0) {

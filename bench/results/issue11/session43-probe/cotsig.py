@@ -6,19 +6,12 @@
 # one whose weights come from that copy (so linear in the data), each value about its valence's
 # median. Clean: in mean edges; noisy: over the noise put in. numpy and scipy.
 # Usage: [MESHES=DIR] python3 cotsig.py MESH...
-import glob, os, sys
+import os, sys
 import numpy as np, scipy.sparse as sp
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "session39-probe"))
-from plyio import read_ply, normals, MESHES  # noqa: E402
-MESHES = os.environ.get("MESHES", MESHES)
-
-
-def umbrella(F, n):
-    E = np.unique(np.sort(np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]]), 1), axis=0)
-    A = sp.coo_matrix((np.ones(2 * len(E)), (np.r_[E[:, 0], E[:, 1]], np.r_[E[:, 1], E[:, 0]])),
-                      shape=(n, n)).tocsr()
-    deg = np.asarray(A.sum(1)).ravel()
-    return (sp.diags(1 / deg) @ A - sp.eye(n)).tocsr(), E, deg
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from plyio import normals  # noqa: E402
+from readings import clean_mesh, noisy_copies  # noqa: E402
 
 
 def cotangent(X, F, n):
@@ -49,17 +42,9 @@ def reading(Y, F, Lu, deg, h):
 
 
 for mesh in sys.argv[1:]:
-    C, F = read_ply("%s/dn_%s_clean.ply" % (MESHES, mesh))
-    Lu, E, deg = umbrella(F, len(C))
-    h = np.linalg.norm(C[E[:, 0]] - C[E[:, 1]], axis=1).mean()
+    C, F, Lu, _, _, deg, h = clean_mesh(mesh)
     out = ["clean %.3f/%.3f" % tuple(reading(C, F, Lu, deg, h))]
-    for f in sorted(glob.glob("%s/dn_%s_*.ply" % (MESHES, mesh))):
-        s = os.path.basename(f)[len("dn_%s_" % mesh):-4]
-        if s == "clean": continue
-        tag = s.split("_")[0]
-        sigma = float(tag[3:]) if tag.startswith("iso") else float(tag[1:])
-        Y, _ = read_ply(f)
-        if len(Y) != len(C): continue
+    for s, sigma, Y in noisy_copies(mesh, len(C)):
         a, b = reading(Y, F, Lu, deg, h)
         out.append("%s %.2f/%.2f" % (s, a / sigma, b / sigma))
     print(mesh, "(umbrella/cotangent)", " ".join(out), flush=True)

@@ -5,11 +5,12 @@
 # value taken about the median of its two-ring, each calibrated on a draw of unit noise along the
 # normals of the same mesh; clean in mean edges, at 0.1 edge over the noise. numpy and scipy.
 # Usage: [MESHES=DIR] python3 localmed.py MESH...
-import glob, os, sys
+import os, sys
 import numpy as np, scipy.sparse as sp
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "session39-probe"))
-from plyio import read_ply, normals, MESHES  # noqa: E402
-MESHES = os.environ.get("MESHES", MESHES)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from plyio import normals  # noqa: E402
+from readings import clean_mesh, noisy_copies  # noqa: E402
 
 
 def mad(v):
@@ -21,13 +22,8 @@ def local(v, rings):
 
 
 for mesh in sys.argv[1:]:
-    C, F = read_ply("%s/dn_%s_clean.ply" % (MESHES, mesh))
+    C, F, L, A, E, deg, h = clean_mesh(mesh)
     n = len(C)
-    E = np.unique(np.sort(np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]]), 1), axis=0)
-    A = sp.coo_matrix((np.ones(2 * len(E)), (np.r_[E[:, 0], E[:, 1]], np.r_[E[:, 1], E[:, 0]])),
-                      shape=(n, n)).tocsr()
-    L = (sp.diags(1 / np.asarray(A.sum(1)).ravel()) @ A - sp.eye(n)).tocsr()
-    h = np.linalg.norm(C[E[:, 0]] - C[E[:, 1]], axis=1).mean()
     R2 = ((A + sp.eye(n)) @ (A + sp.eye(n))).tocsr()
     rings = [R2.indices[R2.indptr[i]:R2.indptr[i + 1]] for i in range(n)]
     L2 = L @ L
@@ -35,12 +31,12 @@ for mesh in sys.argv[1:]:
     field = lambda Y, N: np.einsum("ij,ij->i", N, L2 @ Y) / norm
     N = normals(C, F)
     unit = N * np.random.default_rng(0).standard_normal(n)[:, None]
-    cal_global, cal_local = mad(field(unit, N)), local(field(unit, N), rings)
+    noise = field(unit, N)
+    cal_global, cal_local = mad(noise), local(noise, rings)
     v = field(C, N)
     out = ["clean %.3f/%.3f" % (mad(v) / cal_global / h, local(v, rings) / cal_local / h)]
-    for f in sorted(glob.glob("%s/dn_%s_n0.1*.ply" % (MESHES, mesh))):
-        s = os.path.basename(f)[len("dn_%s_" % mesh):-4]
-        Y, _ = read_ply(f)
+    for s, sigma, Y in noisy_copies(mesh, n, "n0.1"):
         v = field(Y, normals(Y, F))
-        out.append("%s %.2f/%.2f" % (s, mad(v) / cal_global / h / 0.1, local(v, rings) / cal_local / h / 0.1))
+        out.append("%s %.2f/%.2f" % (s, mad(v) / cal_global / h / sigma,
+                                      local(v, rings) / cal_local / h / sigma))
     print(mesh, "(one median / two-ring medians)", " ".join(out), flush=True)

@@ -11,8 +11,9 @@
 import glob, os, sys
 import numpy as np, scipy.sparse as sp
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "session39-probe"))
-from plyio import read_ply, normals, MESHES  # noqa: E402
-MESHES = os.environ.get("MESHES", MESHES)  # a folder of dn_NAME_clean.ply and dn_NAME_*.ply
+import plyio  # noqa: E402
+from plyio import read_ply, normals  # noqa: E402
+MESHES = os.environ.get("MESHES", plyio.MESHES)  # a folder of dn_NAME_clean.ply and dn_NAME_*.ply
 MIN = int(os.environ.get("MIN", "64"))
 
 
@@ -47,21 +48,33 @@ def reading(X, F, L2, norm, strata, h):
     return out
 
 
-for mesh in sys.argv[1:]:
+def clean_mesh(mesh):
+    """The clean mesh's positions, faces, uniform Laplacian, adjacency, edges, valences and mean
+    edge."""
     C, F = read_ply("%s/dn_%s_clean.ply" % (MESHES, mesh))
-    n = len(C)
-    L, A, E, deg = umbrella(F, n)
-    h = np.linalg.norm(C[E[:, 0]] - C[E[:, 1]], axis=1).mean()
-    L2 = L @ L
-    norm = np.sqrt(np.asarray(L2.multiply(L2).sum(1)).ravel())
-    strata = [deg, types(A, deg)]
-    out = ["clean " + "/".join("%.3f" % x for x in reading(C, F, L2, norm, strata, h))]
-    for f in sorted(glob.glob("%s/dn_%s_*.ply" % (MESHES, mesh))):
+    L, A, E, deg = umbrella(F, len(C))
+    return C, F, L, A, E, deg, np.linalg.norm(C[E[:, 0]] - C[E[:, 1]], axis=1).mean()
+
+
+def noisy_copies(mesh, n, prefix=""):
+    """(suffix, sigma in edges, positions) of each noisy copy of `mesh` with n vertices whose
+    suffix starts with `prefix`."""
+    for f in sorted(glob.glob("%s/dn_%s_%s*.ply" % (MESHES, mesh, prefix))):
         s = os.path.basename(f)[len("dn_%s_" % mesh):-4]
         if s == "clean": continue
         tag = s.split("_")[0]
-        sigma = float(tag[3:]) if tag.startswith("iso") else float(tag[1:])
         Y, _ = read_ply(f)
-        if len(Y) != n: continue
-        out.append(s + " " + "/".join("%.2f" % (x / sigma) for x in reading(Y, F, L2, norm, strata, h)))
-    print(mesh, "(pooled/valence/type)", " ".join(out), flush=True)
+        if len(Y) == n: yield s, float(tag[3:]) if tag.startswith("iso") else float(tag[1:]), Y
+
+
+if __name__ == "__main__":
+    for mesh in sys.argv[1:]:
+        C, F, L, A, E, deg, h = clean_mesh(mesh)
+        L2 = L @ L
+        norm = np.sqrt(np.asarray(L2.multiply(L2).sum(1)).ravel())
+        strata = [deg, types(A, deg)]
+        out = ["clean " + "/".join("%.3f" % x for x in reading(C, F, L2, norm, strata, h))]
+        for s, sigma, Y in noisy_copies(mesh, len(C)):
+            out.append(s + " " + "/".join("%.2f" % (x / sigma)
+                                          for x in reading(Y, F, L2, norm, strata, h)))
+        print(mesh, "(pooled/valence/type)", " ".join(out), flush=True)
