@@ -994,9 +994,12 @@ public:
     }
     // |sum_c S_c y_c(lambda)|^2 for every lambda of `grid` from `first` to `last` (exclusive),
     // with y from the Lanczos tridiagonal matrices; NaN elsewhere.
+    // `offsets` (optional): per restored component, whether the last lambda's residual was
+    // modelled with the offset (1) or the scaling (0).
     std::vector<double> rss(const Context& ctx, const Lanczos& u, const std::vector<double>& grid,
                             std::size_t first, std::size_t last,
-                            std::vector<double>* gains = nullptr) const {
+                            std::vector<double>* gains = nullptr,
+                            std::vector<char>* offsets = nullptr) const {
         std::vector<double> out(grid.size(), std::numeric_limits<double>::quiet_NaN());
         if (gains) gains->assign(grid.size(), 1.0);
         if (last <= first) return out;
@@ -1022,7 +1025,7 @@ public:
         for (std::size_t g = first; g < last; ++g) {
             const Eigen::Index col = static_cast<Eigen::Index>(g - first);
             double gain = 1;
-            out[g] = restored(y.col(col), v.col(col), gain);
+            out[g] = restored(y.col(col), v.col(col), gain, offsets);
             if (gains) (*gains)[g] = gain;
         }
         return out;
@@ -1156,9 +1159,11 @@ private:
     // step switches at 7-7.5, and the choice erred 1.5-1.6x the best step's error
     // (bench/results/issue11/auto-gap.md §26).
     double restored(const Eigen::Ref<const Eigen::VectorXd>& y,
-                    const Eigen::Ref<const Eigen::VectorXd>& sketched, double& gain) const {
+                    const Eigen::Ref<const Eigen::VectorXd>& sketched, double& gain,
+                    std::vector<char>* offsets = nullptr) const {
         gain = 1;
         const Layout& l = *layout_;
+        if (offsets) offsets->assign(l.restoration.offset.begin(), l.restoration.offset.end());
         if (l.restoration.components == 0) return sketched.squaredNorm();
         double extra = 0, weighted_beta = 0, covered = 0;
         std::vector<double> beta_of(l.restoration.components, 1.0);
@@ -1186,7 +1191,10 @@ private:
             if (drift_cancelled)
                 for (Eigen::Index j = 0; j < used_; ++j)
                     for (int d = 0; d < 3; ++d) m(d) += moment_part_[j][3 * slot + d] * y(j);
-            if (offset == 1 || (offset == 2 && std::abs(step_change(beta)) <= kMaxOffsetChange)) {
+            const bool offsets_k =
+                offset == 1 || (offset == 2 && std::abs(step_change(beta)) <= kMaxOffsetChange);
+            if (offsets) (*offsets)[k] = offsets_k ? 1 : 0;
+            if (offsets_k) {
                 const double t = by_volume / l.area[k];
                 if (slot >= 0) along_one(slot) = -t;
                 else extra += t * t * l.shape2[k] - 2 * t * by_sum;
@@ -1857,6 +1865,8 @@ StrengthEstimate risk_minimum(const StrengthProblem& p, const Positions& normals
     const bool linear = !p.assemble_at;
     choose(e, !p.explicit_integration && (linear || (p.pilot && (p.order == 1 || later))),
            later ? kLaterRuleReach : std::numeric_limits<double>::infinity());
+    if (p.restorations == 1 && !p.restored.empty())
+        sketch.rss(ctx, u, {e.time_step}, 0, 1, nullptr, &e.restoration);
     if (!ctx.weight_root.empty() && !uniform && e.trace_fraction < kWeightModelKeeps &&
         count <= kWeightedDirectVertices) {
         SparseOperator perturbed;

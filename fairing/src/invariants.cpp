@@ -221,7 +221,7 @@ bool offset_component(const HalfEdgeMesh& mesh, const Component& component, bool
 Restoration restore_measure(const HalfEdgeMesh& mesh, const Component& component,
                             const std::vector<char>& free, double target, Positions& x,
                             VolumeRestoration how, int threads,
-                            const std::vector<double>* shape) {
+                            const std::vector<double>* shape, double max_offset_change) {
     const bool volume = component.closed();
     const char* what = volume ? "volume" : "area";
     int free_count = 0;
@@ -244,7 +244,7 @@ Restoration restore_measure(const HalfEdgeMesh& mesh, const Component& component
     // offset surface over itself, and scaling keeps the shape.
     const bool whole = free_count == static_cast<int>(component.vertices.size());
     const bool offset = !whole || (how == VolumeRestoration::NormalOffset &&
-                                   std::abs(target / now - 1) <= kMaxOffsetChange);
+                                   std::abs(target / now - 1) <= max_offset_change);
     if (offset && offset_component(mesh, component, volume, free, sign, target, now, x, threads,
                                    shape))
         return Restoration::NormalOffset;
