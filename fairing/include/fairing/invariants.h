@@ -31,13 +31,13 @@ constexpr double kMaxOffsetChange = 0.1;
 
 // Restores `target` (volume for closed components, area for open ones) on one component.
 // With fixed vertices, or with VolumeRestoration::NormalOffset while |target/now - 1| <=
-// max_offset_change (kMaxOffsetChange unless given): offsets every free vertex of the component by t * n_i (area-weighted vertex
-// normal) with t solved to machine precision, so fixed vertices do not move. Otherwise (or if no
-// t is found and nothing is fixed): scales about the centroid (the solid's for volume, the
-// surface's for area) by (target/now)^(1/3) or ^(1/2). Returns the method used. Throws Error if
-// a component with fixed vertices cannot be restored. `threads` as for component_volume (the
-// result does not depend on it). `shape` (per vertex, optional): the offset is t shape_i n_i
-// (Options::shaped_offset); the measure is restored as exactly.
+// max_offset_change (kMaxOffsetChange unless given): offsets every free vertex of the component
+// by t * n_i (area-weighted vertex normal) with t solved to machine precision, so fixed vertices
+// do not move. Otherwise (or if no t is found and nothing is fixed): scales about the centroid
+// (the solid's for volume, the surface's for area) by (target/now)^(1/3) or ^(1/2). Returns the
+// method used. Throws Error if a component with fixed vertices cannot be restored. `threads` as
+// for component_volume (the result does not depend on it). `shape` (per vertex, optional): the
+// offset is t shape_i n_i (Options::shaped_offset); the measure is restored as exactly.
 Restoration restore_measure(const HalfEdgeMesh& mesh, const Component& component,
                             const std::vector<char>& free, double target, Positions& positions,
                             VolumeRestoration how = VolumeRestoration::NormalOffset,
