@@ -58,6 +58,8 @@ for path in srcs + ([peers_from] if peers_from else []):   # several runs (e.g. 
         meta["failures"] = meta.get("failures", []) + m_.get("failures", [])
         if any(r.get("method") == "cost" and r.get("auto") != "n/a" for r in lines[1:]):
             R = [r for r in R if r.get("method") != "cost"]  # a later run measured the cost again
+        if any(r.get("method") == "invariant" for r in lines[1:]):
+            R = [r for r in R if r.get("method") != "invariant"]  # and the invariants again
     R += lines[1:]
 MINFO = {m["name"]: m for m in meta["meshes"]}
 OPS = ["umbrella", "scale-dependent", "curvature"]
