@@ -165,9 +165,10 @@ void FilterImplicitFairing::initParameters(fairing_plugin::FilterId id, const Me
     par.addParam(RichBool(kPreserveVolume, d.preserveVolume, tr("Preserve volume"),
         tr("After each step, restore the initial volume of every closed component (sections "
            "3.1-3.2) by offsetting its free vertices along their normals, the smallest "
-           "correction (a loss above 10 % is scaled about the centroid, as in the paper). The "
-           "curvature flow's offset follows the smoothed mean curvature, where the flow took "
-           "the volume.")));
+           "correction (a loss above 10 % is scaled about the centroid, as in the paper; with "
+           "the automatic time step of Umbrella and Scale-Dependent, as the strength's estimate "
+           "modelled the chosen step). The curvature flow's offset follows the smoothed mean "
+           "curvature, where the flow took the volume.")));
     par.addParam(RichEnum(kOpenInvariant, d.openInvariant, labels(openInvariantLabels()), tr("Open components"),
         tr("Components with a boundary enclose no volume: keep nothing, or keep their surface "
            "area.")));
