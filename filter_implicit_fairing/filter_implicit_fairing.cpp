@@ -166,9 +166,9 @@ void FilterImplicitFairing::initParameters(fairing_plugin::FilterId id, const Me
         tr("After each step, restore the initial volume of every closed component (sections "
            "3.1-3.2) by offsetting its free vertices along their normals, the smallest "
            "correction (a loss above 10 % is scaled about the centroid, as in the paper; with "
-           "the automatic time step of Umbrella and Scale-Dependent, as the strength's estimate "
-           "modelled the chosen step). The curvature flow's offset follows the smoothed mean "
-           "curvature, where the flow took the volume.")));
+           "the automatic time step, except for several first-order or curvature flow steps, "
+           "as the strength's estimate modelled the chosen step). The curvature flow's offset "
+           "follows the smoothed mean curvature, where the flow took the volume.")));
     par.addParam(RichEnum(kOpenInvariant, d.openInvariant, labels(openInvariantLabels()), tr("Open components"),
         tr("Components with a boundary enclose no volume: keep nothing, or keep their surface "
            "area.")));

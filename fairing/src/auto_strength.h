@@ -102,11 +102,12 @@
 // model's risk is lowest at 1.4x the best step (1.04-1.14x its error on three noise draws;
 // auto-gap.md, sections 26 and 37).
 // The steps' total restores as modelled: where the model restores after the steps' total
-// (restorations 1: the umbrella, the scale-dependent steps), the risk is lowest just before its
-// switch to scaling when the offset gains up to there, and its volume loss is first order, so
-// the steps' real change can fall past fair()'s switch while the model's does not. fair() then
-// restores each component as the chosen step's model did (StrengthEstimate::restoration), up
-// to twice kMaxOffsetChange for an offset (auto-gap.md, section 44).
+// (restorations 1: the umbrella, the scale-dependent L^2 steps, a single step), the risk is
+// lowest just before its switch to scaling when the offset gains up to there, and its volume
+// loss is first order, so the steps' real change can fall past fair()'s switch while the
+// model's does not. fair() then restores each component as the chosen step's model did
+// (StrengthEstimate::restoration), up to twice kMaxOffsetChange for an offset (auto-gap.md,
+// section 44).
 //
 // Conventions: lambda is the dimensionless time step of Options::time_step (C is scaled by the
 // operator's length unit); rows at or past `data_vertices` (virtual vertices) move with the

@@ -943,7 +943,6 @@ TEST(AutoStrength, CancelledDriftEndsCloserToTheSphere) {
     }
 }
 
-
 // The scale-dependent steps' model restores after the steps' total, and fair() after each step
 // (they recompute the operator): on a thin plate the model rescaled where each of fair()'s two
 // steps lost less than kMaxOffsetChange and was offset. The choice weighed the rescaled result,

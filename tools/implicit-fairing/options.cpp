@@ -145,9 +145,9 @@ void addFilterParameters(CLI::App& app, CommandLine& cl, const Values& d)
     addChoice(app, "--volume-restoration", cl.volumeRestoration,
               "How the volume is restored: offset (every free vertex moves one distance along "
               "its normal, the smallest correction; a loss above 10 % is scaled, or with the "
-              "automatic time step of umbrella and scale-dependent as the estimate modelled "
-              "the chosen step; what the filters do) or scale (section 3.2: about the "
-              "centroid). Default: offset",
+              "automatic time step, except for several first-order or curvature flow steps, "
+              "as the estimate modelled the chosen step; what the filters do) or scale "
+              "(section 3.2: about the centroid). Default: offset",
               {"offset", "scale"}, "HOW");
     app.add_flag("--keep-drift", cl.keepDrift,
                  "Curvature flow: do not translate closed components back by the least-squares "

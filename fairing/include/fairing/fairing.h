@@ -70,8 +70,9 @@ enum class VolumeRestoration {
     // tori it is not: scaling about the centroid moves far parts most whatever shrank (README,
     // "Volume by the smallest correction"). A loss above kMaxOffsetChange (invariants.h) is
     // scaled: an offset surface that large would fold over itself. With the automatic time
-    // step of the umbrella and the scale-dependent L^2 steps, each component is restored as
-    // the estimate modelled the chosen step (src/auto_strength.h), an offset up to twice that.
+    // step of the umbrella, the scale-dependent L^2 steps or a single step, each component is
+    // restored as the estimate modelled the chosen step (src/auto_strength.h), an offset up to
+    // twice that.
     NormalOffset,
     // Section 3.2: scale about the centroid by beta = (V0/Vn)^(1/3). A component with fixed
     // vertices still gets the normal offset, so fixed vertices stay where they are.
