@@ -1626,6 +1626,7 @@ void choose(StrengthEstimate& e, bool strongest_within_error, double reach) {
     const double s2 = e.noise_level * e.noise_level;
     for (int g = 0; g < m; ++g) risk[g] = e.rss[g] + 2 * s2 * e.trace[g];
     const int best = argmin(risk);
+    e.excess_risk = risk[best] / (e.data_count * s2) - 1;
     if (strongest_within_error) {
         int strongest = best;
         for (int g = best + 1; g < m && e.grid[g] <= reach * e.grid[best]; ++g)

@@ -192,6 +192,11 @@ struct StrengthEstimate {
     // rss + 2 noise_level^2 trace.
     std::vector<double> grid, rss, trace;
     double data_count = 0;
+    // The risk's minimum over the grid less the noise's energy, over N sigma^2: the estimated mean
+    // squared error along the normals at the best time step, in units of the noise's variance
+    // (NaN where no risk curve was formed). Two filters estimated on the same data with the same
+    // normals and noise level compare by it (fair()'s frozen-or-recomputed choice).
+    double excess_risk = std::numeric_limits<double>::quiet_NaN();
     // Per restored component (StrengthProblem::offset's index), the restoration the risk
     // modelled at time_step when it models the steps' total (restorations 1): 1 offset, 0
     // rescaled, 2 not modelled; fair() follows it (header, "The steps' total restores as

@@ -215,7 +215,7 @@ def case_json():
     fields = ["vertices", "faces", "operator", "steps", "time_step", "boundary_time_step",
               "automatic_time_step",
               "noise_level", "noise_level_edges", "strength_seconds", "lambda_dt", "cg_iterations",
-              "inner_iterations", "residual",
+              "inner_iterations", "residual", "operator_frozen", "recomputed_risk", "frozen_risk",
               "volume_before", "volume_after", "seconds_engine", "seconds_total"]
     for op, order, ts, expect_ldt in [
             ("curvature", 2, 22.5, 22.5 * e ** 4),
@@ -254,6 +254,13 @@ def case_json():
               "%s order %d: lambda_dt %r, expected %r (mean edge %r)"
               % (op, order, j["lambda_dt"], expect_ldt, e))
         check(0 <= j["seconds_engine"] <= j["seconds_total"], "timings %r" % j)
+        # Frozen or recomputed steps are compared by their estimated risk only with the automatic
+        # time step and an operator that changes (Options::freeze_when_better); a noisy sphere
+        # keeps the recomputed steps
+        compared = automatic and op != "umbrella"
+        check((j["recomputed_risk"] is not None) == compared and
+              (j["frozen_risk"] is not None) == compared and j["operator_frozen"] is False,
+              "%s: operator choice %r" % (op, j))
         print("json %s order %d: lambda_dt %.6g, %d CG iterations, volume %.9g -> %.9g"
               % (op, order, j["lambda_dt"], j["cg_iterations"], vb, va))
     # Each filter's one-click step count, as the benchmarks that sweep and time it take it
@@ -265,6 +272,17 @@ def case_json():
               "%s: the CLI's default is L^%s x%d, bench/one_click.py says L^2 x%d"
               % (op, j["order"], j["steps"], steps))
     print("json: the default step counts match bench/one_click.py %r" % one_click.ONE_CLICK_STEPS)
+    # --recompute: no comparison, and on the sphere the same result as the default's recomputed
+    # steps; --freeze with it is a usage error
+    a = run_json([src, work("compared.ply"), "--operator", "scale-dependent"])
+    b = run_json([src, work("recomputed.ply"), "--operator", "scale-dependent", "--recompute"])
+    check(a["recomputed_risk"] is not None and b["recomputed_risk"] is None and
+          not a["operator_frozen"] and not b["operator_frozen"], "--recompute: %r %r" % (a, b))
+    check(ML.read_ply_vertices(work("compared.ply")) ==
+          ML.read_ply_vertices(work("recomputed.ply")),
+          "--recompute changed the recomputed steps' result")
+    out, err = run([src, work("both.ply"), "--freeze", "--recompute"], expect=2)
+    check("excludes" in (out + err).lower(), "--freeze --recompute: %r" % err)
     # --no-volume: the umbrella flow shrinks the sphere
     j = run_json([src, work("out.ply"), "--operator", "umbrella", "--order", 1, "--steps", 3,
                   "--no-volume"])
@@ -510,8 +528,8 @@ OPTIONS = ["--operator", "--time-step", "--steps", "--order", "--explicit", "--n
            "--no-volume", "--volume-restoration", "--keep-drift", "--uniform-offset", "--area",
            "--boundary",
            "--weights-from-quality", "--invert-weights",
-           "--freeze", "--tolerance", "--max-iterations", "--accept-unconverged", "--preconditioner",
-           "--threads",
+           "--freeze", "--recompute", "--tolerance", "--max-iterations", "--accept-unconverged",
+           "--preconditioner", "--threads",
            "--json", "--ascii", "--quiet", "--help", "--version"]
 
 

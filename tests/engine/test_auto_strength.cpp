@@ -15,6 +15,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -702,9 +703,10 @@ TEST(AutoStrength, CurvatureFlowL2StepsOnAThinPlateSwitchWhereFairDoes) {
     const auto noisy = [&](int draw) {
         return meshes::gaussian_isotropic_noise(clean, 0.25 * 0.05, 300 + draw);
     };
+    Options o = automatic(Operator::CurvatureFlow, 2, 4);
+    o.freeze_when_better = false;  // the recomputed steps' model (frozen ones restore once)
     const Ratios r = automatic_against_best(
-        3, noisy, automatic(Operator::CurvatureFlow, 2, 4), 0.05, 20,
-        [&](const Positions& p) { return box_error(p, size); });
+        3, noisy, o, 0.05, 20, [&](const Positions& p) { return box_error(p, size); });
     EXPECT_LT(r.worst, 1.1);
 }
 
@@ -833,17 +835,24 @@ TEST(AutoStrength, EveryOptionGivesASensibleResult) {
 }
 
 // Progress covers the estimate and the solves, never goes back, and ends at 1.
+// Also where both the recomputed and the frozen steps are estimated: on the noisy sphere the
+// recomputed steps are kept, on the noisy cube the frozen ones taken (StepsFreezeWhere...).
 TEST(AutoStrength, ProgressIsMonotone) {
-    const TriangleMesh m = noisy_sphere(0.25, 4);
-    Options o = automatic(Operator::CurvatureFlow, 2, 2);
-    std::vector<double> seen;
-    o.progress = [&seen](double f) { seen.push_back(f); };
-    fairing::fair(m, {}, o);
-    ASSERT_GE(seen.size(), 3u);
-    for (std::size_t k = 1; k < seen.size(); ++k) EXPECT_GE(seen[k], seen[k - 1]);
-    EXPECT_GT(seen.front(), 0.0);
-    EXPECT_LT(seen.front(), 1.0 / 3 + 1e-12);  // the estimate's share comes first
-    EXPECT_DOUBLE_EQ(seen.back(), 1.0);
+    const std::vector<TriangleMesh> meshes = {
+        noisy_sphere(0.25, 4), meshes::gaussian_isotropic_noise(meshes::box(16), 0.25 / 16, 21)};
+    for (std::size_t k = 0; k < meshes.size(); ++k) {
+        Options o = automatic(Operator::CurvatureFlow, 2, 2);
+        std::vector<double> seen;
+        o.progress = [&seen](double f) { seen.push_back(f); };
+        const fairing::Result r = fairing::fair(meshes[k], {}, o);
+        EXPECT_TRUE(r.operator_compared);
+        EXPECT_EQ(r.operator_frozen, k == 1);
+        ASSERT_GE(seen.size(), 3u);
+        for (std::size_t j = 1; j < seen.size(); ++j) EXPECT_GE(seen[j], seen[j - 1]);
+        EXPECT_GT(seen.front(), 0.0);
+        EXPECT_LT(seen.front(), 1.0 / 3 + 1e-12);  // the estimate's share comes first
+        EXPECT_DOUBLE_EQ(seen.back(), 1.0);
+    }
 }
 
 // White box: on a mesh with known normal noise the estimator's pieces agree with the truth; the
@@ -957,6 +966,7 @@ TEST(AutoStrength, TheStepsTotalRestoresAsTheRiskModelledIt) {
         SCOPED_TRACE(testing::Message() << "seed " << seed);
         const TriangleMesh noisy = meshes::gaussian_isotropic_noise(clean, 0.25 / 24, seed);
         Options o = automatic(Operator::ScaleDependent, 2, 2);
+        o.freeze_when_better = false;  // the recomputed steps, as an explicit time step takes them
         const fairing::Result chosen = fairing::fair(noisy, {}, o);
         ASSERT_EQ(chosen.components[0].restoration, fairing::Restoration::Scale);
         o.time_step = chosen.time_step;
@@ -966,5 +976,60 @@ TEST(AutoStrength, TheStepsTotalRestoresAsTheRiskModelledIt) {
         const fairing::Result scaled = fairing::fair(noisy, {}, o);
         EXPECT_TRUE(scaled.positions == chosen.positions);
         EXPECT_LT(box_error(chosen.positions, size), 0.8 * box_error(own_rule.positions, size));
+    }
+}
+
+// Options::freeze_when_better: with the automatic time step the curvature flow's and the
+// scale-dependent operator's steps are estimated recomputed and frozen, and freeze where that
+// risk is the lower by a margin (fairing.cpp, kFreezeMargin). On a cube of 16 cells a side with a
+// quarter cell of Gaussian noise in all directions (three draws) recomputed steps round its
+// edges and corners as the vertex areas there shrink: frozen, the one-click error is 0.92-0.94
+// (curvature flow) and 0.96 (scale-dependent) of the recomputed one-click run's. On a noisy
+// two-density sphere the recomputed steps keep it round, and stay: the result is the recomputed
+// run's to the bit. The choice is reported, and the frozen run is reproduced by an explicit time
+// step with freeze_operator, which alone (or a given time step) makes no comparison.
+TEST(AutoStrength, StepsFreezeWhereTheirRiskIsLower) {
+    const TriangleMesh cube = meshes::box(16);
+    const TriangleMesh sphere = meshes::two_density_sphere(3);
+    const double sphere_edge = meshes::mean_edge_length(sphere.positions, sphere.triangles);
+    for (Operator op : {Operator::CurvatureFlow, Operator::ScaleDependent}) {
+        const int steps = op == Operator::CurvatureFlow ? 4 : 2;
+        const double bound = op == Operator::CurvatureFlow ? 0.95 : 0.98;
+        for (std::uint64_t seed : {21, 22, 23}) {
+            SCOPED_TRACE(testing::Message() << "operator " << static_cast<int>(op) << " seed "
+                                            << seed);
+            const TriangleMesh noisy = meshes::gaussian_isotropic_noise(cube, 0.25 / 16, seed);
+            Options o = automatic(op, 2, steps);
+            const fairing::Result chosen = fairing::fair(noisy, {}, o);
+            EXPECT_TRUE(chosen.operator_compared);
+            ASSERT_TRUE(chosen.operator_frozen);
+            EXPECT_GT(chosen.recomputed_risk, chosen.frozen_risk);
+            o.freeze_when_better = false;
+            const fairing::Result recomputed = fairing::fair(noisy, {}, o);
+            EXPECT_FALSE(recomputed.operator_compared);
+            EXPECT_FALSE(recomputed.operator_frozen);
+            EXPECT_LT(unit_cube_error(chosen.positions),
+                      bound * unit_cube_error(recomputed.positions));
+            o.time_step = chosen.time_step;
+            o.freeze_operator = true;
+            const fairing::Result given = fairing::fair(noisy, {}, o);
+            EXPECT_FALSE(given.operator_compared);
+            EXPECT_TRUE(given.operator_frozen);
+            EXPECT_TRUE(given.positions == chosen.positions);
+
+            const TriangleMesh round =
+                meshes::gaussian_radial_noise(sphere, 0.25 * sphere_edge, seed);
+            Options s = automatic(op, 2, steps);
+            const fairing::Result kept = fairing::fair(round, {}, s);
+            EXPECT_TRUE(kept.operator_compared);
+            EXPECT_FALSE(kept.operator_frozen);
+            s.freeze_when_better = false;
+            EXPECT_TRUE(fairing::fair(round, {}, s).positions == kept.positions);
+            s.freeze_when_better = true;
+            s.time_step = kept.time_step;
+            const fairing::Result explicit_step = fairing::fair(round, {}, s);
+            EXPECT_FALSE(explicit_step.operator_compared);
+            EXPECT_TRUE(explicit_step.positions == kept.positions);
+        }
     }
 }

@@ -49,7 +49,7 @@ expect = {"iterations": "int", "inner_iterations": "int", "steps": "int", "verti
           "time_step": "double", "boundary_time_step": "double",
           "automatic_time_step": "bool", "noise_level": "double",
           "noise_level_edges": "double", "mean_edge_length": "double",
-          "strength_seconds": "double"}
+          "strength_seconds": "double", "operator_frozen": "bool"}
 if sorted(out) != sorted(expect):
     print("FAIL: the output map has %s, expected %s" % (sorted(out), sorted(expect))); sys.exit(1)
 for k, t in expect.items():

@@ -27,7 +27,7 @@ struct CommandLine {
     bool keepDrift = false;
     bool uniformOffset = false;
     bool qualityWeights = false, invertWeights = false;
-    bool freeze = false;
+    bool freeze = false, recompute = false;
     double tolerance = 0;
     int maxIterations = 0;
     bool acceptUnconverged = false;

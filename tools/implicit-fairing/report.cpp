@@ -50,6 +50,10 @@ std::string jsonReport(const RunFacts& f)
     j["noise_level_edges"] = r.noise_level_edges;
     j["mean_edge_length"] = r.mean_edge_length;
     j["strength_seconds"] = r.strength_seconds;
+    j["operator_frozen"] = r.operator_frozen;
+    const nlohmann::json none;  // null: the risks were not compared
+    j["recomputed_risk"] = r.operator_compared ? nlohmann::json(r.recomputed_risk) : none;
+    j["frozen_risk"] = r.operator_compared ? nlohmann::json(r.frozen_risk) : none;
     j["lambda_dt"] = r.lambda_dt;
     j["cg_iterations"] = r.total_iterations;
     j["inner_iterations"] = r.total_inner_iterations;
@@ -78,9 +82,21 @@ std::string summaryLine(const RunFacts& f)
                                    ? "volume " + formatNumber(r.volume_before) + " -> " +
                                          formatNumber(r.volume_after) + "; "
                                    : "";
+    // The estimated risks of both (Result::recomputed_risk), the one taken first.
+    const bool frozen = r.operator_frozen;
+    const std::string operator_choice =
+        r.operator_compared
+            ? printfString("; %s operator: risk %.3g against %.3g %s",
+                           frozen ? "frozen" : "recomputed",
+                           frozen ? r.frozen_risk : r.recomputed_risk,
+                           frozen ? r.recomputed_risk : r.frozen_risk,
+                           frozen ? "recomputed" : "frozen")
+            : std::string();
     const std::string automatic =
-        r.automatic_time_step ? printfString(" (automatic: noise %.3g edges)", r.noise_level_edges)
-                              : std::string();
+        r.automatic_time_step
+            ? printfString(" (automatic: noise %.3g edges%s)", r.noise_level_edges,
+                           operator_choice.c_str())
+            : std::string();
     return printfString(
         "%s: %s: %ld vertices (%d moved), %ld faces; %s, order %d, %d step%s, time step %g%s, "
         "lambda_dt %g; %d CG iterations, residual %.3g; %s%.6g s (engine %.6g s)",

@@ -141,8 +141,15 @@ struct Options {
     // the same result to the tolerance, one SolveReport for all of them. The curvature flow's
     // recomputed vertex areas follow a scan's thin parts as they shrink, and keep a noisy sphere
     // round: on scans frozen steps erred 0.88x the recomputed ones (120 cases), on the study's
-    // spheres 2.0x (bench/results/issue11/auto-gap.md, section 41), so off stays the default.
+    // spheres 2.0x (bench/results/issue11/auto-gap.md, section 41); off lets freeze_when_better
+    // decide.
     bool freeze_operator = false;
+    // With the automatic time step and freeze_operator off, the curvature flow's and the
+    // scale-dependent operator's several implicit steps estimate the risk of frozen steps as
+    // well as of recomputed ones, and freeze when that estimated error is the lower by a margin
+    // (Result::operator_frozen; src/fairing.cpp, kFreezeMargin). Off, or with a given time step:
+    // recomputed, as the paper's flow (section 4).
+    bool freeze_when_better = true;
     // Explicit integration only: use the normalized operators of section 5.5 (eigenvalues of L
     // in [-2, 0], so time_step is dimensionless and up to 1 is stable).
     bool normalized = false;
@@ -284,6 +291,15 @@ struct Result {
     double trace_fraction = 0;
     int strength_iterations = 0;
     double strength_seconds = 0;
+    // Whether the steps kept the first step's operator, by Options::freeze_operator or by
+    // Options::freeze_when_better's choice (false for the umbrella, whose operator never changes).
+    bool operator_frozen = false;
+    // Options::freeze_when_better's comparison, where it was made (operator_compared): the
+    // estimated error of recomputed and of frozen steps at their best time steps, the mean
+    // squared error along the normals over the noise's variance (estimates: may be negative).
+    bool operator_compared = false;
+    double recomputed_risk = 0;
+    double frozen_risk = 0;
     int steps = 0;
     std::vector<SolveReport> solves;
     int total_iterations = 0;

@@ -100,6 +100,10 @@ struct Values {
     double tolerance = fairing::Options().tolerance;
     int maxIterations = fairing::Options().max_iterations;
     bool freezeOperator = false;
+    // Not a filter parameter either (see volumeRestoration): with freezeOperator off and the
+    // automatic time step, the engine freezes where its risk estimate says so
+    // (Options::freeze_when_better); the command-line tool's --recompute turns that off.
+    bool freezeWhenBetter = fairing::Options().freeze_when_better;
     bool acceptUnconverged = false;
 };
 
@@ -159,6 +163,7 @@ inline fairing::Options toOptions(fairing::Operator op, const Values& v) {
     o.tolerance = v.tolerance;
     o.max_iterations = v.maxIterations;
     o.freeze_operator = v.freezeOperator;
+    o.freeze_when_better = v.freezeWhenBetter;
     o.accept_unconverged = v.acceptUnconverged;
     return o;
 }
