@@ -202,7 +202,7 @@ void FilterImplicitFairing::initParameters(fairing_plugin::FilterId id, const Me
            "(default): recomputed, except that with the automatic time step the curvature flow "
            "and the scale-dependent filter estimate the error of frozen steps too and freeze "
            "where it is the lower (the log says which ran): over the denoising study's 120 scan "
-           "cases their one-click error fell by 11 % and 5 %, and noisy spheres, which "
+           "cases their one-click error fell by 11 % and 4 %, and noisy spheres, which "
            "recomputed steps keep round, stay recomputed. Tick it to freeze always.")));
     par.addParam(RichBool(kAcceptUnconverged, d.acceptUnconverged, tr("Accept unconverged solves"),
         tr("When a solve hits the iteration cap, keep its last iterate with a warning instead "

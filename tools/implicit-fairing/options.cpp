@@ -184,7 +184,7 @@ void addFilterParameters(CLI::App& app, CommandLine& cl, const Values& d)
         "curvature flow's and the scale-dependent operator's several steps are frozen where the "
         "estimated error of frozen steps is the lower (scans: over the denoising study's 120 "
         "scan cases the curvature flow's one-click error fell by 11 %, the scale-dependent "
-        "filter's by 5 %; spheres keep the recomputed steps). The JSON report's "
+        "filter's by 4 %; spheres keep the recomputed steps). The JSON report's "
         "operator_frozen says which ran");
     app.add_flag("--recompute", cl.recompute,
                  "Recompute the coefficients at each step also with the automatic time step "
