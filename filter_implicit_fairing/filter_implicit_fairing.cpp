@@ -78,7 +78,7 @@ QString FilterImplicitFairing::filterInfo(fairing_plugin::FilterId id) const
                   "triangles drift and even out in size: it also regularizes the triangulation. "
                   "<b>Pick it for noisy scans</b>: with its defaults it had the lowest error of "
                   "the three on every scan of the denoising study (e.g. the fandisk at noise 0.25 "
-                  "edge: 0.108 edge, against 0.119 scale-dependent and 0.126 curvature flow; "
+                  "edge: 0.108 edge, against 0.115 scale-dependent and 0.117 curvature flow; "
                   "MeshLab's Taubin Smooth at its best iteration count 0.107), and on a torus it "
                   "beat every other smoother at its best (0.033 edge against 0.039 or more).");
         break;

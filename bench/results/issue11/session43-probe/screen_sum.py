@@ -43,6 +43,8 @@ for op in DEFAULT:
             moved.append("%s %s %s: sigma %.3f -> %.3f edges, time step %.3g -> %.3g, %.3f -> %.3f" % (
                 r["set"], r["mesh"], r["noise"], r[k3 + "_a_sig"], r[k3 + "_b_sig"],
                 r[k3 + "_a_ts"], r[k3 + "_b_ts"], a, b))
+    if n == 0:  # a screen of other filters (OPS=)
+        continue
     print("%s: %d cases, error / best fixed step's, geometric mean %.4f -> %.4f, past 10 %% %d -> %d,"
           " moved by more than %g: %d" % (op, n, math.exp(la / n), math.exp(lb / n), pa, pb,
                                           threshold, len(moved)))
