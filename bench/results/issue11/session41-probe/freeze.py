@@ -33,6 +33,29 @@ def noisy_of(seed, mesh, noise):
     sig = noise.lstrip("niso")
     kind = "iso" if noise.startswith("iso") else "normal"
     return "%s/dn_%s_%s_%s%s%s.ply" % (M, mesh, noise, sig, kind, s)
+def evaluate(clean, truth, noisy, files):
+    """fairing-denoise-tool eval of the outputs in files ((label, path), ...): {label: rms};
+    the outputs are removed."""
+    ev = subprocess.run([DT, "eval", clean, truth, noisy] + [o for _, o in files],
+                        capture_output=True, text=True).stdout
+    e = {json.loads(l)["file"]: json.loads(l) for l in ev.splitlines() if l.startswith("{")}
+    for _, o in files:
+        os.remove(o)
+    return {lab: e[o]["rms"] for lab, o in files}
+def best_fixed(steps_of):
+    """The best fixed L^2 step's error per (set, mesh, noise, op) in each set's committed extract,
+    for the filters of steps_of ({op: steps})."""
+    best = {}
+    for d, _ in SETS:
+        f = os.path.join(R, "denoise.jsonl" if d == "denoise" else d + "/denoise.jsonl")
+        for l in open(f):
+            r = json.loads(l)
+            if (r.get("method") != "ours" or r.get("order") != 2 or r.get("op") not in steps_of
+                    or r.get("steps") != steps_of[r["op"]] or r.get("kind") == "auto"):
+                continue
+            k = (d, r["mesh"], r["noise"], r["op"])
+            best[k] = min(best.get(k, float("inf")), r["rms"])
+    return best
 variants = [("default", []), ("freeze", ["--freeze"])] + [
     (v.split("=", 1)[0], v.split("=", 1)[1].split()) for v in EXTRA]
 def one(c):

@@ -36,12 +36,7 @@ def one(c):
             out[k + "_ts"] = j["time_step"]
             out[k + "_sig"] = j["noise_level_edges"]
             files.append((k, o))
-    ev = subprocess.run([F.DT, "eval", clean, truth, noisy] + [o for _, o in files],
-                        capture_output=True, text=True).stdout
-    e = {json.loads(l)["file"]: json.loads(l) for l in ev.splitlines() if l.startswith("{")}
-    for k, o in files:
-        out[k] = e[o]["rms"]
-        os.remove(o)
+    out.update(F.evaluate(clean, truth, noisy, files))
     print(json.dumps(out), flush=True)
 
 

@@ -12,16 +12,7 @@ _argv, sys.argv = sys.argv, sys.argv[:1]
 import freeze as F  # noqa: E402
 sys.argv = _argv
 DEFAULT = {"umbrella": 8, "scale-dependent": 2, "curvature": 4}
-best = {}
-for d, seed in F.SETS:
-    f = os.path.join(F.R, "denoise.jsonl" if d == "denoise" else d + "/denoise.jsonl")
-    for l in open(f):
-        r = json.loads(l)
-        if (r.get("method") != "ours" or r.get("order") != 2 or r.get("op") not in DEFAULT
-                or r.get("steps") != DEFAULT[r["op"]] or r.get("kind") == "auto"):
-            continue
-        k = (d, r["mesh"], r["noise"], r["op"])
-        best[k] = min(best.get(k, math.inf), r["rms"])
+best = F.best_fixed(DEFAULT)
 rows = [json.loads(l) for l in open(sys.argv[1])]
 threshold = float(sys.argv[2]) if len(sys.argv) > 2 else 0.01
 for op in DEFAULT:

@@ -39,12 +39,7 @@ def one(c):
                 out.update(frozen=j["operator_frozen"], recomputed_risk=j["recomputed_risk"],
                            frozen_risk=j["frozen_risk"], sigma=j["noise_level_edges"])
             files.append((lab, o))
-        ev = subprocess.run([F.DT, "eval", clean, truth, noisy] + [o for _, o in files],
-                            capture_output=True, text=True).stdout
-        e = {json.loads(l)["file"]: json.loads(l) for l in ev.splitlines() if l.startswith("{")}
-        for lab, o in files:
-            out[lab] = e[o]["rms"]
-            os.remove(o)
+        out.update(F.evaluate(clean, truth, noisy, files))
         lines.append(json.dumps(out))
     print("\n".join(lines), flush=True)
 

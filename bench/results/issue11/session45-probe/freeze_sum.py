@@ -11,16 +11,7 @@ _argv, sys.argv = sys.argv, sys.argv[:1]
 import freeze as F  # noqa: E402
 sys.argv = _argv
 DEFAULT = {"scale-dependent": 2, "curvature": 4}
-best = {}
-for d, seed in F.SETS:
-    f = os.path.join(F.R, "denoise.jsonl" if d == "denoise" else d + "/denoise.jsonl")
-    for l in open(f):
-        r = json.loads(l)
-        if (r.get("method") != "ours" or r.get("order") != 2 or r.get("op") not in DEFAULT
-                or r.get("steps") != DEFAULT[r["op"]] or r.get("kind") != "fixed"):
-            continue
-        k = (d, r["mesh"], r["noise"], r["op"])
-        best[k] = min(best.get(k, math.inf), r["rms"])
+best = F.best_fixed(DEFAULT)  # the extracts' fixed rows (freeze.py's runs are one-click)
 rows = [json.loads(l) for l in open(sys.argv[1])]
 margins = [float(x) for x in sys.argv[2].split(",")] if len(sys.argv) > 2 else [0, 0.002, 0.01, 0.02, 0.03]
 
