@@ -85,7 +85,7 @@ constexpr double kDirectResidual = 1e-3;
 
 // Options::freeze_when_better's margins (Run::estimate_frozen_or_recomputed), in the noise's
 // variance per vertex: about twice the most the recomputed estimate exceeded the frozen one by
-// on the study's spheres and torus, where frozen steps err up to 2.4x (curvature flow; 0.0175,
+// on the study's spheres and torus, where frozen steps err up to 3.6x (curvature flow; 0.0175,
 // the torus in all directions) and 1.4x (scale-dependent; 0.0051) the recomputed ones. A margin
 // of 0.002 would have frozen the scale-dependent steps on 102 scan cases instead of 76 (one-click
 // error 0.985x), but also on spheres within 0.0005 of it and on an open CAD part (libcgal-demo's

@@ -15,7 +15,6 @@
 #include <array>
 #include <cmath>
 #include <cstring>
-#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -838,13 +837,13 @@ TEST(AutoStrength, EveryOptionGivesASensibleResult) {
 // Also where both the recomputed and the frozen steps are estimated: on the noisy sphere the
 // recomputed steps are kept, on the noisy cube the frozen ones taken (StepsFreezeWhere...).
 TEST(AutoStrength, ProgressIsMonotone) {
-    const std::vector<TriangleMesh> meshes = {
+    const std::vector<TriangleMesh> inputs = {
         noisy_sphere(0.25, 4), meshes::gaussian_isotropic_noise(meshes::box(16), 0.25 / 16, 21)};
-    for (std::size_t k = 0; k < meshes.size(); ++k) {
+    for (std::size_t k = 0; k < inputs.size(); ++k) {
         Options o = automatic(Operator::CurvatureFlow, 2, 2);
         std::vector<double> seen;
         o.progress = [&seen](double f) { seen.push_back(f); };
-        const fairing::Result r = fairing::fair(meshes[k], {}, o);
+        const fairing::Result r = fairing::fair(inputs[k], {}, o);
         EXPECT_TRUE(r.operator_compared);
         EXPECT_EQ(r.operator_frozen, k == 1);
         ASSERT_GE(seen.size(), 3u);
