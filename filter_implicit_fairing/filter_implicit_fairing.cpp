@@ -370,7 +370,8 @@ void FilterImplicitFairing::logSolves(const fairing::Result& r)
                         "noise's variance: %2 frozen, %3 recomputed)")
                     .arg(r.operator_frozen ? "the first step's for all steps, frozen"
                                            : "recomputed at each step")
-                    .arg(num(r.frozen_risk)).arg(num(r.recomputed_risk)));
+                    .arg((r.frozen_risk_is_bound ? "at least " : "") + num(r.frozen_risk))
+                    .arg(num(r.recomputed_risk)));
     else if (r.operator_frozen)
         logLine("Operator: the first step's for all steps (Freeze operator)");
     if (r.boundary_time_step > 0)

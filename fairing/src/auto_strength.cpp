@@ -788,6 +788,12 @@ constexpr double kMargin = 2.0;
 // the filter and the rule chose worse (1.058 -> 1.083 and 1.086 -> 1.101 in geometric mean), so
 // they keep the mean's rule.
 constexpr int kLaterRuleSteps = 4;
+// What a checkpoint's bound on the final excess risk gives up (header, "An estimate that cannot
+// win"), in units of N sigma^2, for the converged points' tolerance (kConvergedSquaredSpectrum)
+// and rounding: on 224 runs of the two filters that compare frozen and recomputed steps no
+// checkpoint's bound exceeded the final value (a point-wise first form did, by up to 0.0011 off
+// the sponge; auto-gap.md section 47).
+constexpr double kBoundSlack = 0.002;
 constexpr double kLaterReach = 4.0;
 // The cap on the Lanczos steps: the last checkpoint (they fall at 6, 8, 11, ... 152, 212, 296,
 // 1.4x apart; search()). The cap was 400, whose next checkpoint would have been at 414: a run
@@ -1434,6 +1440,10 @@ struct Search {
     double converged_to = 0;  // largest converged lambda
     double count = 0;
     bool capped = true;  // stopped by kMaxSteps before the minimizer settled
+    // Stopped because the risk cannot fall below StrengthProblem::chosen_below; risk_bound is
+    // the checkpoint's bound on the excess risk (header, "An estimate that cannot win").
+    bool out_of_reach = false;
+    double risk_bound = 0;
 };
 
 // How far past the last checkpoint's converged points a checkpoint judges. A point counts as
@@ -1509,6 +1519,25 @@ struct LaterSteps {
     Blend blend;
 };
 
+// A bound on the final excess risk from a checkpoint's curves (header, "An estimate that cannot
+// win"). Between two converged grid points the residual, the divergence and the restoration's
+// gain on it each move one way (the gain steps up where a component's restoration switches to
+// scaling, and the risk can dip just below that switch: the sponge's scale-dependent steps at
+// half an edge, 0.016 of N sigma^2 under both grid points' values), so the risk there is at
+// least the lesser residual plus the least product of a gain and a divergence at the two ends.
+// Past the last converged point it is at least the residual there.
+double excess_risk_bound(const Curves& now, double count, double sigma) {
+    const double s2 = sigma * sigma;
+    double least = now.rss[now.reach - 1];
+    for (std::size_t g = now.first; g + 1 < now.reach; ++g) {
+        const double a = now.gain[g], b = now.gain[g + 1];
+        const double c = now.trace[g], d = now.trace[g + 1];
+        const double filtered = std::min({a * c, a * d, b * c, b * d});
+        least = std::min(least, std::min(now.rss[g], now.rss[g + 1]) + 2 * s2 * filtered);
+    }
+    return least / (count * s2) - 1;
+}
+
 // Runs both Lanczos processes, with the sketched risk at checkpoints, until the risk's
 // minimizer has settled inside the converged part of the curves. `later` (optional) steps
 // along, as many steps as the movement; from kLaterRuleSteps steps its residual's risk also
@@ -1580,6 +1609,15 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sk
         for (std::size_t g = now.first; g < now.reach; ++g)
             risk.push_back(now.rss[g] + 2 * sigma * sigma * now.gain[g] * now.trace[g]);
         const std::size_t best = now.first + argmin(risk);
+        if (!later) {
+            const double bound = excess_risk_bound(now, count, sigma) - kBoundSlack;
+            if (bound > ctx.p.chosen_below) {
+                s.out_of_reach = true;
+                s.risk_bound = bound;
+                s.capped = false;
+                break;
+            }
+        }
         s.minimizer = s.grid[best];
         s.converged_to = s.grid[now.reach - 1];
         // A minimizer at the end of the converged points is only a bound (the risk was still
@@ -1829,6 +1867,11 @@ StrengthEstimate risk_minimum(const StrengthProblem& p, const Positions& normals
     e.lanczos_steps = static_cast<int>(
         std::max({u.alpha[0].size(), u.alpha[1].size(), u.alpha[2].size()}));
     e.capped = found.capped;
+    if (found.out_of_reach) {
+        e.out_of_reach = true;
+        e.excess_risk = found.risk_bound;
+        return e;
+    }
     // The final grid around the minimizer, within the converged part.
     const double hi = std::min(found.converged_to, 2.5 * found.minimizer);
     const double lo = std::min(found.minimizer / 2.5, hi / 2);

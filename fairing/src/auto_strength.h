@@ -108,6 +108,16 @@
 // model's does not. fair() then restores each component as the chosen step's model did
 // (StrengthEstimate::restoration), up to twice kMaxOffsetChange for an offset (auto-gap.md,
 // section 44).
+// An estimate that cannot win: fair() estimates recomputed steps first and frozen ones second,
+// and takes the frozen ones only where their risk is the lower by a margin
+// (StrengthProblem::chosen_below). Past the converged points the residual RSS_n only grows with
+// lambda (each mode's share (1 - (1 + lambda g)^-s)^2 does; the normal projection and the
+// restoration bend that little) and the divergence is not negative, so the final risk is at
+// least the lesser of the converged points' least risk and RSS_n at the last converged point.
+// The frozen search stops at the first checkpoint where that bound, less a slack (kBoundSlack),
+// lies above chosen_below. The choice is the same as the whole search's; on the 1 M-face torus
+// the curvature flow's frozen estimate stops after 40 Lanczos steps instead of 109 (auto-gap.md,
+// section 47).
 //
 // Conventions: lambda is the dimensionless time step of Options::time_step (C is scaled by the
 // operator's length unit); rows at or past `data_vertices` (virtual vertices) move with the
@@ -180,6 +190,12 @@ struct StrengthProblem {
     // for the scale-dependent operator, whose 1/|e| weights the umbrella's tangential drift on
     // irregular triangles changes most (auto-gap.md, section 29).
     bool pilot_on_own_weights = false;
+    // Where the estimate competes (fair()'s frozen-or-recomputed choice), the excess risk it
+    // must fall below to be chosen (StrengthEstimate::excess_risk). Once a checkpoint's bound on
+    // the final risk lies above it the search stops: the estimate cannot be chosen, and
+    // StrengthEstimate::out_of_reach says so (header, "An estimate that cannot win"). Infinite:
+    // no such bound, the search runs its course.
+    double chosen_below = std::numeric_limits<double>::infinity();
 };
 
 struct StrengthEstimate {
@@ -202,6 +218,9 @@ struct StrengthEstimate {
     // rescaled, 2 not modelled; fair() follows it (header, "The steps' total restores as
     // modelled"). Else empty.
     std::vector<char> restoration;
+    // The search stopped once it could not fall below StrengthProblem::chosen_below:
+    // excess_risk is then a lower bound on it, and time_step, the grid and its curves are empty.
+    bool out_of_reach = false;
 };
 
 // x moved `passes` times halfway to the mean of its one-ring (op's columns below `data`).

@@ -1141,6 +1141,8 @@ detail::StrengthEstimate Run::estimate_frozen_or_recomputed(detail::StrengthProb
         frozen.progress = [this, share](double f) { report_progress(share * (0.5 + 0.5 * f)); };
     }
     detail::StrengthEstimate recomputed = detail::estimate_strength(problem);
+    if (std::isfinite(recomputed.excess_risk))  // the frozen search stops once it cannot win
+        frozen.chosen_below = recomputed.excess_risk - margin;
     detail::StrengthEstimate kept = detail::estimate_strength(frozen);
     kept.lanczos_steps += recomputed.lanczos_steps;
     recomputed.lanczos_steps = kept.lanczos_steps;
@@ -1149,7 +1151,9 @@ detail::StrengthEstimate Run::estimate_frozen_or_recomputed(detail::StrengthProb
     result_.operator_compared = true;
     result_.recomputed_risk = recomputed.excess_risk;
     result_.frozen_risk = kept.excess_risk;
-    if (!(recomputed.excess_risk - kept.excess_risk > margin)) return recomputed;
+    result_.frozen_risk_is_bound = kept.out_of_reach;
+    if (kept.out_of_reach || !(recomputed.excess_risk - kept.excess_risk > margin))
+        return recomputed;
     frozen_ = true;
     return kept;
 }

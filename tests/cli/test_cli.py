@@ -216,7 +216,7 @@ def case_json():
               "automatic_time_step",
               "noise_level", "noise_level_edges", "strength_seconds", "lambda_dt", "cg_iterations",
               "inner_iterations", "residual", "operator_frozen", "recomputed_risk", "frozen_risk",
-              "volume_before", "volume_after", "seconds_engine", "seconds_total"]
+              "frozen_risk_is_bound", "volume_before", "volume_after", "seconds_engine", "seconds_total"]
     for op, order, ts, expect_ldt in [
             ("curvature", 2, 22.5, 22.5 * e ** 4),
             ("curvature", 1, 0.5, 0.5 * e ** 2),
@@ -259,7 +259,8 @@ def case_json():
         # keeps the recomputed steps
         compared = automatic and op != "umbrella"
         check((j["recomputed_risk"] is not None) == compared and
-              (j["frozen_risk"] is not None) == compared and j["operator_frozen"] is False,
+              (j["frozen_risk"] is not None) == compared and
+              (j["frozen_risk_is_bound"] is not None) == compared and j["operator_frozen"] is False,
               "%s: operator choice %r" % (op, j))
         print("json %s order %d: lambda_dt %.6g, %d CG iterations, volume %.9g -> %.9g"
               % (op, order, j["lambda_dt"], j["cg_iterations"], vb, va))

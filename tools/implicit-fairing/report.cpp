@@ -54,6 +54,7 @@ std::string jsonReport(const RunFacts& f)
     const nlohmann::json none;  // null: the risks were not compared
     j["recomputed_risk"] = r.operator_compared ? nlohmann::json(r.recomputed_risk) : none;
     j["frozen_risk"] = r.operator_compared ? nlohmann::json(r.frozen_risk) : none;
+    j["frozen_risk_is_bound"] = r.operator_compared ? nlohmann::json(r.frozen_risk_is_bound) : none;
     j["lambda_dt"] = r.lambda_dt;
     j["cg_iterations"] = r.total_iterations;
     j["inner_iterations"] = r.total_inner_iterations;
@@ -86,9 +87,10 @@ std::string summaryLine(const RunFacts& f)
     const bool frozen = r.operator_frozen;
     const std::string operator_choice =
         r.operator_compared
-            ? printfString("; %s operator: risk %.3g against %.3g %s",
+            ? printfString("; %s operator: risk %.3g against %s%.3g %s",
                            frozen ? "frozen" : "recomputed",
                            frozen ? r.frozen_risk : r.recomputed_risk,
+                           r.frozen_risk_is_bound ? "at least " : "",
                            frozen ? r.recomputed_risk : r.frozen_risk,
                            frozen ? "recomputed" : "frozen")
             : std::string();

@@ -300,6 +300,9 @@ struct Result {
     bool operator_compared = false;
     double recomputed_risk = 0;
     double frozen_risk = 0;
+    // The frozen estimate stopped as soon as it could no longer win (the recomputed steps ran):
+    // frozen_risk is then a lower bound on its risk, not its value.
+    bool frozen_risk_is_bound = false;
     int steps = 0;
     std::vector<SolveReport> solves;
     int total_iterations = 0;
