@@ -110,11 +110,12 @@
 // section 44).
 // An estimate that cannot win: fair() estimates recomputed steps first and frozen ones second,
 // and takes the frozen ones only where their risk is the lower by a margin
-// (StrengthProblem::chosen_below). Past the converged points the residual RSS_n only grows with
-// lambda (each mode's share (1 - (1 + lambda g)^-s)^2 does; the normal projection and the
-// restoration bend that little) and the divergence is not negative, so the final risk is at
-// least the lesser of the converged points' least risk and RSS_n at the last converged point.
-// The frozen search stops at the first checkpoint where that bound, less a slack (kBoundSlack),
+// (StrengthProblem::chosen_below). The residual RSS_n grows with lambda (each mode's share
+// (1 - (1 + lambda g)^-s)^2 does; the normal projection and the restoration bend that little),
+// the divergence falls and is not negative, and the restoration's gain on it steps up where a
+// component switches to scaling. So between two converged grid points the risk is at least the
+// lesser RSS_n plus the least gain x divergence of the two ends, and past the last converged
+// point at least RSS_n there (auto_strength.cpp, excess_risk_bound). The frozen search stops at the first checkpoint where that bound, less a slack (kBoundSlack),
 // lies above chosen_below. The choice is the same as the whole search's; on the 1 M-face torus
 // the curvature flow's frozen estimate stops after 40 Lanczos steps instead of 109 (auto-gap.md,
 // section 47).

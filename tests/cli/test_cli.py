@@ -216,7 +216,8 @@ def case_json():
               "automatic_time_step",
               "noise_level", "noise_level_edges", "strength_seconds", "lambda_dt", "cg_iterations",
               "inner_iterations", "residual", "operator_frozen", "recomputed_risk", "frozen_risk",
-              "frozen_risk_is_bound", "volume_before", "volume_after", "seconds_engine", "seconds_total"]
+              "frozen_risk_is_bound", "volume_before", "volume_after", "seconds_engine",
+              "seconds_total"]
     for op, order, ts, expect_ldt in [
             ("curvature", 2, 22.5, 22.5 * e ** 4),
             ("curvature", 1, 0.5, 0.5 * e ** 2),
