@@ -214,7 +214,8 @@ def case_json():
     e = DM.mean_edge(V, F)
     fields = ["vertices", "faces", "operator", "steps", "time_step", "boundary_time_step",
               "automatic_time_step",
-              "noise_level", "noise_level_edges", "strength_seconds", "lambda_dt", "cg_iterations",
+              "noise_level", "noise_level_edges", "strength_seconds", "strength_iterations",
+              "lambda_dt", "cg_iterations",
               "inner_iterations", "residual", "operator_frozen", "recomputed_risk", "frozen_risk",
               "frozen_risk_is_bound", "volume_before", "volume_after", "seconds_engine",
               "seconds_total"]
@@ -248,9 +249,12 @@ def case_json():
         check(j["automatic_time_step"] == automatic, "automatic_time_step %r" % j)
         if automatic:  # the chosen step, reported, is the one used
             check(j["time_step"] > 0 and j["noise_level_edges"] >= 0, "strength %r" % j)
+            # the Lanczos processes ran (a given time step spends none)
+            check(j["strength_iterations"] > 0, "strength_iterations %r" % j)
             expect_ldt *= j["time_step"]
         else:
             check(j["time_step"] == ts, "time_step %r, given %r" % (j["time_step"], ts))
+            check(j["strength_iterations"] == 0, "strength_iterations %r" % j)
         check(abs(j["lambda_dt"] - expect_ldt) <= 1e-9 * expect_ldt,
               "%s order %d: lambda_dt %r, expected %r (mean edge %r)"
               % (op, order, j["lambda_dt"], expect_ldt, e))

@@ -50,6 +50,7 @@ std::string jsonReport(const RunFacts& f)
     j["noise_level_edges"] = r.noise_level_edges;
     j["mean_edge_length"] = r.mean_edge_length;
     j["strength_seconds"] = r.strength_seconds;
+    j["strength_iterations"] = r.strength_iterations;
     j["operator_frozen"] = r.operator_frozen;
     const nlohmann::json none;  // null: the risks were not compared
     j["recomputed_risk"] = r.operator_compared ? nlohmann::json(r.recomputed_risk) : none;
