@@ -10,7 +10,7 @@
 # estimate's final excess risk, the frozen one's checkpoints and final excess risk.
 # Usage: DT=<bench build>/bin/fairing-denoise-tool BT=<...>/fairing-bench-tool W=<work dir>
 #        python3 bound.py > bound.jsonl
-import json, os, re, subprocess, sys
+import json, os, re, subprocess, sys, threading
 from concurrent.futures import ThreadPoolExecutor
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", ".."))
@@ -54,14 +54,35 @@ def parse(err):
     return blocks
 
 
-def one(case):
-    name, (tag, sigma, kind), seed, (op, steps) = case
+def noisy_of(name, noise, seed):
+    """The noisy draw (made once; written under a temporary name first, since the two filters'
+    runs of a case may ask for it at once) and the clean mesh's truth for the sweep."""
+    tag, sigma, kind = noise
     clean = clean_of(name)
     noisy = "%s/%s_%s_s%d.ply" % (W, name, tag, seed)
     if not os.path.exists(noisy):
-        subprocess.run([DT, "noise", clean, noisy, sigma, str(seed), kind], check=True,
+        part = "%s.%d.ply" % (noisy[:-len(".ply")], threading.get_ident())
+        subprocess.run([DT, "noise", clean, part, sigma, str(seed), kind], check=True,
                        capture_output=True)
-    truth = SYNTH[name][1] if name in SYNTH else "mesh"
+        os.replace(part, noisy)
+    return clean, noisy, SYNTH[name][1] if name in SYNTH else "mesh"
+
+
+def run_all(one):
+    """one(case) for every case, two at a time (JOBS), one printed line each."""
+    for n in SCANS:  # fetch the scans once, before the parallel runs
+        clean_of(n)
+    cases = [(m, nz, s, o) for m in list(SYNTH) + list(SCANS) for nz in NOISES for s in SEEDS
+             for o in OPS]
+    with ThreadPoolExecutor(int(os.environ.get("JOBS", "2"))) as ex:
+        for line in ex.map(one, cases):
+            print(line, flush=True)
+
+
+def one(case):
+    name, noise, seed, (op, steps) = case
+    tag = noise[0]
+    clean, noisy, truth = noisy_of(name, noise, seed)
     p = subprocess.run([DT, "sweep", noisy, clean, truth, op, "2", steps, "1", "--auto", "--ts",
                         "1e-9"], capture_output=True, text=True,
                        env=dict(os.environ, FAIRING_DBG_CK="1", OMP_NUM_THREADS="1"))
@@ -71,10 +92,5 @@ def one(case):
                            rms=auto[0]["rms"] if auto else None))
 
 
-for n in SCANS:  # fetch the scans once, before the parallel runs
-    clean_of(n)
-cases = [(m, nz, s, o) for m in list(SYNTH) + list(SCANS) for nz in NOISES for s in SEEDS
-         for o in OPS]
-with ThreadPoolExecutor(int(os.environ.get("JOBS", "2"))) as ex:
-    for line in ex.map(one, cases):
-        print(line, flush=True)
+if __name__ == "__main__":
+    run_all(one)
