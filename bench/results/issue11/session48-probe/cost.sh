@@ -3,19 +3,21 @@
 # SPDX-FileCopyrightText: 2026 The filter_implicit_fairing authors
 # auto-gap.md section 48: what the curvature flow's one-click estimate costs on the study's cost
 # meshes (bench/denoise.py's COST_MESHES at a quarter edge: the 1.2 M-face Loop bunny and the
-# 1 M-face torus), one thread. ROUNDS rounds of the one click, --recompute (the recomputed
-# estimate alone), --freeze (the frozen one alone) and the chosen time step given, in turn, so
-# that the machine's load falls on all alike; the least of each is printed with its Lanczos steps.
+# 1 M-face torus), on THREADS threads (1 by default). ROUNDS rounds of the one click, --recompute
+# (the recomputed estimate alone), --freeze (the frozen one alone) and the chosen time step given,
+# in turn, so that the machine's load falls on all alike; the least of each is printed with its
+# Lanczos steps.
 # Usage: CLI=build/bin/implicit-fairing sh cost.sh [mesh ...]
 CLI=${CLI:-build/bin/implicit-fairing}
 M=${M:-$HOME/.cache/filter_implicit_fairing/bench-meshes}
 ROUNDS=${ROUNDS:-3}
 OP=${OP:-curvature}
-export OMP_NUM_THREADS=1
+THREADS=${THREADS:-1}
+export OMP_NUM_THREADS=$THREADS
 out=$(mktemp --suffix=.ply)
 for mesh in ${*:-bunny_loop2_1.2m torus_1m}; do
   in=$M/dn_${mesh}_n0.25.ply
-  run() { "$CLI" "$in" "$out" --operator "$OP" --threads 1 --json -q "$@" | tail -1; }
+  run() { "$CLI" "$in" "$out" --operator "$OP" --threads "$THREADS" --json -q "$@" | tail -1; }
   ts=$(run | python3 -c 'import sys,json; print(repr(json.load(sys.stdin)["time_step"]))')
   for round in $(seq "$ROUNDS"); do
     for mode in one-click --recompute --freeze explicit; do
@@ -38,6 +40,6 @@ print(sys.argv[1])
 for mode, (est, total, steps, ts, its) in best.items():
     print("  %-11s time step %9.2f  Lanczos %4s  estimate %5.2f s  whole run %5.2f s  estimate / one step %.2f"
           % (mode, ts, its, est, total, est / step))
-' "$mesh $OP"
+ ' "$mesh $OP, $THREADS thread(s)"
 done
 rm -f "$out"
