@@ -18,11 +18,12 @@ out=$(mktemp --suffix=.ply)
 for mesh in ${*:-bunny_loop2_1.2m torus_1m}; do
   in=$M/dn_${mesh}_n0.25.ply
   run() { "$CLI" "$in" "$out" --operator "$OP" --threads "$THREADS" --json -q "$@" | tail -1; }
-  ts=$(run | python3 -c 'import sys,json; print(repr(json.load(sys.stdin)["time_step"]))')
   for round in $(seq "$ROUNDS"); do
     for mode in one-click --recompute --freeze explicit; do
       case $mode in
-        one-click) j=$(run) ;;
+        one-click)  # its chosen time step is the one given in this round's explicit run
+          j=$(run)
+          ts=$(echo "$j" | python3 -c 'import sys,json; print(repr(json.load(sys.stdin)["time_step"]))') ;;
         explicit) j=$(run --time-step "$ts") ;;
         *) j=$(run "$mode") ;;
       esac
