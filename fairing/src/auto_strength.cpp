@@ -412,27 +412,18 @@ void step_group(const std::array<Context*, K>& cs, const std::array<Lanczos*, K>
             beta_before[k][c] = ls[k]->active[c] && j > 0 ? ls[k]->beta[c][j - 1] : 0.0;
     // Per process and column: alpha, |w'|^2, <w', v>, |v|^2.
     const auto sums = blocked_sum<12 * K>(n, op.threads, [=](int i, double* sum) {
-        if (!f[i]) return;  // a fixed row's product is not used
         for (int k = 0; k < K; ++k) {
             double s0, s1, s2, y[3];
             if (BlendLast && k == K - 1) k_row_with(i, xs[k], start, column, blend, s0, s1, s2);
             else k_row(i, xs[k], start, column, weights[k], s0, s1, s2);
             const double* x = xs[k] + 3 * i;
-            if (ds[k]) {
-                system_row(ds[k][i], scales[k], x, s0, s1, s2, true, y, sum + 12 * k);
-            } else {  // D = 0 (Context::c): no 0 * x to add (the compiler may not drop it)
-                y[0] = scales[k] * s0;
-                y[1] = scales[k] * s1;
-                y[2] = scales[k] * s2;
-                for (int c = 0; c < 3; ++c) sum[12 * k + c] += x[c] * y[c];
-            }
-            // d_of(), from the arrays; one division instead of three (5 % of the pass: session
-            // 48's --recompute on the 1.2 M-face Loop bunny, auto-gap.md section 48)
+            system_row(ds[k] ? ds[k][i] : 0.0, scales[k], x, s0, s1, s2, f[i] != 0, y, sum + 12 * k);
+            if (!f[i]) continue;
+            // d_of(), from the arrays
             const double d = soft[k] && i < data[k] ? mass[k][i] / soft[k][i] : mass[k][i];
-            const double inverse_d = 1 / d;
             double* w = ws[k] + 3 * i;
             for (int c = 0; c < 3; ++c) {
-                w[c] = y[c] * inverse_d - beta_before[k][c] * w[c];
+                w[c] = y[c] / d - beta_before[k][c] * w[c];
                 sum[12 * k + 3 + c] += d * w[c] * w[c];
                 sum[12 * k + 6 + c] += d * w[c] * x[c];
                 sum[12 * k + 9 + c] += d * x[c] * x[c];
@@ -812,14 +803,17 @@ constexpr double kBoundSlack = 0.002;
 // against 5.93 s at 296 for the same time step to 9 digits: the estimate then cost 2.34 against
 // 1.78 steps at the chosen strength. No run of the study's meshes needs more than 212 steps.
 constexpr int kMaxSteps = 296;
-// Checkpoints fall kCheckpointGrowth apart. A settled checkpoint whose converged points fall
-// short of kMargin by at most kShortGridPoints points of the risk's grid (0.1 decades apart)
-// calls the next one only kShortGrowth on: the margin is then a few Lanczos steps away, and the
-// 40 % step overshot it by some 30 (the 1.2 M-face Loop bunny's curvature flow at a quarter edge:
-// both searches settled at 78 steps, 1.58x short of 2x, and ran to 109; with the short step 178
-// Lanczos steps instead of 218, its error 0.993x). On 224 runs of 14 meshes, 4 noises and 2 seeds
-// of the curvature flow's and the scale-dependent filter's defaults: 6-7 % fewer Lanczos steps,
-// 64 choices moved, errors 0.9985x in geometric mean (0.709x to 1.019x; auto-gap.md section 48).
+// Checkpoints fall kCheckpointGrowth apart. A checkpoint whose mean risk's minimizer has settled,
+// and whose converged points fall short of kMargin times it by at most kShortGridPoints points of
+// the risk's grid (0.1 decades apart), calls the next one only kShortGrowth on: the margin is then
+// a few Lanczos steps away, which the 40 % step overshot by some 30. On the 1.2 M-face Loop bunny
+// (curvature flow, a quarter edge) both searches settled at 78 steps 1.58x short of 2x and ran to
+// 109: 178 Lanczos steps instead of 218 now, the error 0.993x. On 224 runs (14 meshes, 4 noises,
+// 2 seeds; the curvature flow's and the scale-dependent filter's defaults) 5-7 % fewer Lanczos
+// steps, 62 choices moved, the error 0.9985x in geometric mean (0.709x to 1.011x). Only the mean
+// risk's margin: the same short step on the later steps' risk (kLaterRuleSteps) stopped the 51 k
+// sphere at a quarter edge before its later process had converged (time step 42,919 -> 68,986,
+// 1.14x the best fixed step's error; auto-gap.md section 49).
 constexpr double kCheckpointGrowth = 1.4;
 constexpr double kShortGrowth = 1.15;
 constexpr int kShortGridPoints = 2;
@@ -1651,16 +1645,10 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sk
         previous_minimizer = s.minimizer;
         previous_at_edge = best + 1 == now.reach;
         const bool complete = exhausted || now.reach == s.grid.size();
-        // Whether the converged points end at most kShortGridPoints short of the margin.
-        const auto near_margin = [&] {
-            const double short_by = kMargin * s.minimizer / s.converged_to;
-            return short_by > 1 && short_by <= std::pow(10.0, 0.1 * kShortGridPoints) * 1.0001;
-        };
-        const auto call_short = [&] {
-            const int shorter = std::max(j + 2, static_cast<int>(kShortGrowth * (j + 1)));
-            next_check = std::min(next_check, shorter);
-        };
-        if (settled && near_margin()) call_short();
+        const double short_by = kMargin * s.minimizer / s.converged_to;
+        if (settled && short_by > 1 && short_by <= std::pow(10.0, 0.1 * kShortGridPoints) * 1.0001)
+            next_check = std::min(next_check,
+                                  std::max(j + 2, static_cast<int>(kShortGrowth * (j + 1))));
         if (!complete && !(settled && s.converged_to >= kMargin * s.minimizer)) continue;
         if (later && ctx.p.steps >= kLaterRuleSteps) {
             // The risk the choice minimizes (risk_minimum): the later steps' residual with the
@@ -1674,7 +1662,6 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sk
             for (std::size_t g = now.first; g < top; ++g)
                 risk.push_back(rss[g] + 2 * sigma * sigma * now.gain[g] * now.trace[g]);
             s.minimizer = s.grid[now.first + argmin(risk)];
-            if (near_margin()) call_short();
             if (!complete && s.converged_to < kMargin * s.minimizer) continue;
         }
         s.capped = false;
