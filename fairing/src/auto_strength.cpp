@@ -805,7 +805,7 @@ constexpr double kBoundSlack = 0.002;
 constexpr int kMaxSteps = 296;
 // Checkpoints fall kCheckpointGrowth apart. A checkpoint whose mean risk's minimizer has settled,
 // and whose converged points fall short of kMargin times it by at most kShortGridPoints points of
-// the risk's grid (0.1 decades apart), calls the next one only kShortGrowth on: the margin is then
+// the risk's grid (kGridDecades apart), calls the next one only kShortGrowth on: the margin is then
 // a few Lanczos steps away, which the 40 % step overshot by some 30. On the 1.2 M-face Loop bunny
 // (curvature flow, a quarter edge) both searches settled at 78 steps 1.58x short of 2x and ran to
 // 109: 178 Lanczos steps instead of 218 now, the error 0.993x. On 224 runs (14 meshes, 4 noises,
@@ -819,6 +819,8 @@ constexpr int kMaxSteps = 296;
 constexpr double kCheckpointGrowth = 1.4;
 constexpr double kShortGrowth = 1.15;
 constexpr int kShortGridPoints = 2;
+// The risk's grid of time steps (search()): kGridDecades apart in log10, from 1e-4 up.
+constexpr double kGridDecades = 0.1;
 // Rows of the sketch of the normal components (exact below this many data vertices).
 constexpr int kSketch = 8192;
 // Fixed chunks of rows of Sketch::add (so its sums are the same on any number of threads), and
@@ -1563,7 +1565,7 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sk
     Search s;
     s.count = count;
     const double top = ctx.p.explicit_integration ? std::min(ctx.p.max_time_step, 1e7) : 1e7;
-    for (double l = 1e-4; l < top; l *= std::pow(10.0, 0.1)) s.grid.push_back(l);
+    for (double l = 1e-4; l < top; l *= std::pow(10.0, kGridDecades)) s.grid.push_back(l);
     if (ctx.p.explicit_integration) s.grid.push_back(top);
     Curves last, before;
     double previous_minimizer = 0;
@@ -1647,8 +1649,10 @@ Search search(Context& ctx, Lanczos& u, Lanczos& z, Perturbation* mc, Sketch& sk
         previous_minimizer = s.minimizer;
         previous_at_edge = best + 1 == now.reach;
         const bool complete = exhausted || now.reach == s.grid.size();
+        // (1.0001: the grid's products round, so k points apart is k steps to a few ulps)
         const double short_by = kMargin * s.minimizer / s.converged_to;
-        if (settled && short_by > 1 && short_by <= std::pow(10.0, 0.1 * kShortGridPoints) * 1.0001)
+        const double short_limit = std::pow(10.0, kGridDecades * kShortGridPoints) * 1.0001;
+        if (settled && short_by > 1 && short_by <= short_limit)
             next_check = std::min(next_check,
                                   std::max(j + 2, static_cast<int>(kShortGrowth * (j + 1))));
         if (!complete && !(settled && s.converged_to >= kMargin * s.minimizer)) continue;

@@ -17,14 +17,20 @@ def path(d):
     return "bench/results/denoise.jsonl" if d == "denoise" else "bench/results/%s/denoise.jsonl" % d
 
 
-def summary(lines):
-    rows = [json.loads(l) for l in lines if l.strip()]
-    kind = {m["name"]: m["kind"] for m in rows[0]["meta"]["meshes"]}
+def oracles(rows):
+    """The best fixed step's error per (mesh, noise, op, order, steps) of an extract's rows."""
     best = {}
-    for r in rows[1:]:
+    for r in rows:
         if r.get("method") == "ours" and r.get("kind") == "fixed" and r.get("rms") is not None:
             k = (r["mesh"], r["noise"], r["op"], r["order"], r["steps"])
             best[k] = min(best.get(k, math.inf), r["rms"])
+    return best
+
+
+def summary(lines):
+    rows = [json.loads(l) for l in lines if l.strip()]
+    kind = {m["name"]: m["kind"] for m in rows[0]["meta"]["meshes"]}
+    best = oracles(rows[1:])
     auto = [r["rms"] / best[k] for r in rows[1:] if r.get("kind") == "auto"
             for k in [(r["mesh"], r["noise"], r["op"], r["order"], r["steps"])] if k in best]
     past = []
@@ -49,19 +55,20 @@ def summary(lines):
                 per={m: (min(v), max(v)) for m, v in sorted(per.items())})
 
 
-rev = sys.argv[1]
-for d in sys.argv[2:] or SETS:
-    old = summary(subprocess.run(["git", "show", "%s:%s" % (rev, path(d))], capture_output=True,
-                                 text=True, check=True).stdout.splitlines())
-    new = summary(open(path(d)).read().splitlines())
-    print("== %s: automatic rows within 10 %%: %d -> %d of %d" % (d, old["within"], new["within"], new["rows"]))
-    print("   one-click defaults past 10 %%: %d -> %d" % (len(old["past"]), len(new["past"])))
-    for a in sorted(set(old["past"]) | set(new["past"])):
-        f = lambda p: "%.3f" % p[a] if a in p else "-"
-        print("     %s: %s -> %s" % (a, f(old["past"]), f(new["past"])))
-    if new["n"]:
-        print("   scans, best one click / best peer: <= 1 %d -> %d, <= 1.01 %d -> %d of %d, gmean %.4f -> %.4f"
-              % (old["le1"], new["le1"], old["le101"], new["le101"], new["n"], old["gmean"], new["gmean"]))
-        for m in new["per"]:
-            o, w = old["per"].get(m, (0, 0)), new["per"][m]
-            if o != w: print("     %s %.3f-%.3f -> %.3f-%.3f" % (m, o[0], o[1], w[0], w[1]))
+if __name__ == "__main__":
+    rev = sys.argv[1]
+    for d in sys.argv[2:] or SETS:
+        old = summary(subprocess.run(["git", "show", "%s:%s" % (rev, path(d))], capture_output=True,
+                                     text=True, check=True).stdout.splitlines())
+        new = summary(open(path(d)).read().splitlines())
+        print("== %s: automatic rows within 10 %%: %d -> %d of %d" % (d, old["within"], new["within"], new["rows"]))
+        print("   one-click defaults past 10 %%: %d -> %d" % (len(old["past"]), len(new["past"])))
+        for a in sorted(set(old["past"]) | set(new["past"])):
+            f = lambda p: "%.3f" % p[a] if a in p else "-"
+            print("     %s: %s -> %s" % (a, f(old["past"]), f(new["past"])))
+        if new["n"]:
+            print("   scans, best one click / best peer: <= 1 %d -> %d, <= 1.01 %d -> %d of %d, gmean %.4f -> %.4f"
+                  % (old["le1"], new["le1"], old["le101"], new["le101"], new["n"], old["gmean"], new["gmean"]))
+            for m in new["per"]:
+                o, w = old["per"].get(m, (0, 0)), new["per"][m]
+                if o != w: print("     %s %.3f-%.3f -> %.3f-%.3f" % (m, o[0], o[1], w[0], w[1]))

@@ -6,30 +6,22 @@
 # session43-probe/sets_sum.py takes it): the rows whose choice moved, the geometric mean of the
 # new error over the old on them, the rows that crossed 10 % either way, and the largest moves.
 # Usage (repository root): python3 rows_diff.py REV [SET ...]
-import json, math, subprocess, sys
-SETS = ["denoise", "denoise-seed2", "denoise-seed8", "denoise-noise", "heldout-s11", "heldout-s13",
-        "heldout-s17"]
-
-
-def path(d):
-    return "bench/results/denoise.jsonl" if d == "denoise" else "bench/results/%s/denoise.jsonl" % d
+import json, math, os, subprocess, sys
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "session43-probe"))
+from sets_sum import SETS, oracles, path  # noqa: E402
 
 
 def autos(lines):
     rows = [json.loads(l) for l in lines if l.strip()][1:]
-    best, auto = {}, {}
-    for r in rows:
-        k = (r.get("mesh"), r.get("noise"), r.get("op"), r.get("order"), r.get("steps"))
-        if r.get("method") == "ours" and r.get("kind") == "fixed" and r.get("rms") is not None:
-            best[k] = min(best.get(k, math.inf), r["rms"])
-        if r.get("method") == "ours" and r.get("kind") == "auto" and r.get("rms") is not None:
-            auto[k] = r
+    best = oracles(rows)
+    auto = {(r["mesh"], r["noise"], r["op"], r["order"], r["steps"]): r for r in rows
+            if r.get("method") == "ours" and r.get("kind") == "auto" and r.get("rms") is not None}
     return {k: (r["rms"] / best[k], r["rms"], r.get("time_step"), r.get("strength_iterations"))
             for k, r in auto.items() if k in best}
 
 
 rev = sys.argv[1]
-total = [0, 0, 0.0]
+total = [0, 0]
 for d in sys.argv[2:] or SETS:
     old = autos(subprocess.run(["git", "show", "%s:%s" % (rev, path(d))], capture_output=True,
                                text=True, check=True).stdout.splitlines())
@@ -47,8 +39,8 @@ for d in sys.argv[2:] or SETS:
     for k in crossed:
         print("   crossed 10 %%: %s: %.3f -> %.3f (time step %.4g -> %.4g)"
               % (" ".join(map(str, k)), old[k][0], new[k][0], old[k][2], new[k][2]))
-    for k in sorted(moved, key=lambda k: new[k][1] / old[k][1])[:1] + \
-            sorted(moved, key=lambda k: new[k][1] / old[k][1])[-1:]:
+    by_change = sorted(moved, key=lambda k: new[k][1] / old[k][1])
+    for k in by_change[:1] + by_change[-1:]:
         print("   %s: %.3f -> %.3f of the oracle" % (" ".join(map(str, k)), old[k][0], new[k][0]))
 print("all sets: Lanczos steps %d -> %d (%+.1f %%)" % (total[0], total[1],
                                                       100 * (total[1] / max(1, total[0]) - 1)))
