@@ -3,24 +3,29 @@
 #include "vertex_order.h"
 
 #include <algorithm>
-#include <cmath>
-#include <cstdint>
 #include <cstdlib>
-#include <utility>
 
 namespace fairing {
 namespace detail {
 namespace {
 
-// The 21 low bits of v spread to every third bit.
-std::uint64_t spread_bits(std::uint64_t v) {
-    v &= 0x1fffff;
-    v = (v | v << 32) & 0x1f00000000ffffULL;
-    v = (v | v << 16) & 0x1f0000ff0000ffULL;
-    v = (v | v << 8) & 0x100f00f00f00f00fULL;
-    v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
-    v = (v | v << 2) & 0x1249249249249249ULL;
-    return v;
+// The vertices reached from `from` breadth-first over the edges (start, column: adjacency),
+// appended to `order`; returns the last one reached. `seen` marks them with `mark`.
+int breadth_first(int from, const int* start, const int* column, int* seen, int mark,
+                  std::vector<int>& order) {
+    std::size_t head = order.size();
+    order.push_back(from);
+    seen[from] = mark;
+    int last = from;
+    for (; head < order.size(); ++head) {
+        last = order[head];
+        for (int k = start[last]; k < start[last + 1]; ++k) {
+            if (seen[column[k]] == mark) continue;
+            seen[column[k]] = mark;
+            order.push_back(column[k]);
+        }
+    }
+    return last;
 }
 
 }  // namespace
@@ -44,21 +49,34 @@ std::vector<int> locality_order(const TriangleMesh& mesh) {
     std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
     if (gaps[gaps.size() / 2] <= kReorderMedianGap) return {};
 
-    const Eigen::RowVector3d lo = mesh.positions.colwise().minCoeff();
-    const Eigen::RowVector3d extent = mesh.positions.colwise().maxCoeff() - lo;
-    const double cells = static_cast<double>((1 << 21) - 1);
-    std::vector<std::pair<std::uint64_t, int>> keyed(static_cast<std::size_t>(n));
-    for (int i = 0; i < n; ++i) {
-        std::uint64_t key = 0;
-        for (int c = 0; c < 3; ++c) {
-            const double unit = extent[c] > 0 ? (mesh.positions(i, c) - lo[c]) / extent[c] : 0.0;
-            key |= spread_bits(static_cast<std::uint64_t>(unit * cells)) << c;
+    // Each face's three directed edges both ways, as adjacency lists (a repeated edge is
+    // listed twice: the search skips what it has seen).
+    std::vector<int> start(static_cast<std::size_t>(n) + 1, 0);
+    for (const Triangle& t : mesh.triangles)
+        for (int v : t) start[static_cast<std::size_t>(v) + 1] += 2;
+    for (std::size_t i = 0; i < static_cast<std::size_t>(n); ++i) start[i + 1] += start[i];
+    std::vector<int> column(static_cast<std::size_t>(start.back()));
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (const Triangle& t : mesh.triangles)
+        for (int k = 0; k < 3; ++k) {
+            int& at = fill[static_cast<std::size_t>(t[k])];
+            column[static_cast<std::size_t>(at++)] = t[(k + 1) % 3];
+            column[static_cast<std::size_t>(at++)] = t[(k + 2) % 3];
         }
-        keyed[static_cast<std::size_t>(i)] = {key, i};
+
+    // Per connected component, in the order of its first input vertex: a breadth-first search
+    // from the vertex the search from that first one reaches last (a far end of the component,
+    // as in Cuthill-McKee's pseudo-peripheral start), so that the fronts, and with them the
+    // index gap of every edge, stay short.
+    std::vector<int> order;
+    order.reserve(static_cast<std::size_t>(n));
+    std::vector<int> seen(static_cast<std::size_t>(n), 0), probe;
+    for (int i = 0; i < n; ++i) {
+        if (seen[static_cast<std::size_t>(i)] != 0) continue;
+        probe.clear();
+        const int far_end = breadth_first(i, start.data(), column.data(), seen.data(), 1, probe);
+        breadth_first(far_end, start.data(), column.data(), seen.data(), 2, order);
     }
-    std::sort(keyed.begin(), keyed.end());
-    std::vector<int> order(static_cast<std::size_t>(n));
-    for (int i = 0; i < n; ++i) order[static_cast<std::size_t>(i)] = keyed[static_cast<std::size_t>(i)].second;
     return order;
 }
 
