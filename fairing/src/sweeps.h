@@ -118,7 +118,7 @@ inline void add_run_down(const double* vs, const int* column, const Weights& w, 
 // price per iteration): on a 40,962-vertex icosphere numbered level by level, blocks of 8,192
 // rows took 30 / 74 / 68 iterations against complex Jacobi's 30 / 84 / 77 (umbrella /
 // scale-dependent / curvature), one block 17 / 38 / 34. Meshes of kReorderVertices vertices or
-// more are renumbered in Z-order when their edges are long in index (vertex_order.h); below
+// more are renumbered breadth-first when their edges are long in index (vertex_order.h); below
 // kParallelRows the sweeps run on one thread and take the whole mesh as one block.
 constexpr double kInBlockCouplings = 0.75;
 

@@ -10,8 +10,11 @@
 // on the 1.2 M-face Loop bunny no edge is more than 2,264 rows apart. A Z-order (Morton) curve of
 // the positions, the numbering before, kept the median gap at 5 but left 1 % of the edges more
 // than 16,384 rows apart, each a miss past the caches: the automatic strength's Lanczos steps
-// took 60 ms against 48 ms breadth-first, an implicit step 3.9 s against 3.5 s (one thread;
-// bench/results/issue11/auto-gap.md section 50).
+// took 59 ms against 44 ms breadth-first, the one click's four curvature steps 15.8 s against
+// 10.5 s (one thread). The fronts grow with the square root of the size: on the 2.4 M-vertex
+// bunny (Loop x3) an edge spans a median 2,377 rows, more of them cross the sweep blocks
+// (sweeps.h), and its curvature steps take 297 iterations instead of 239, in 0.90x the time
+// (bench/results/issue11/auto-gap.md section 50).
 //
 // Conventions: order[new] = old; an empty order means "keep the input's". Faces are then listed
 // by their smallest new vertex (stable), so that assembly also walks memory forwards.

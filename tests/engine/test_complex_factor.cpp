@@ -212,11 +212,11 @@ TEST(ComplexFactor, GaussSeidelInBlocksOnLargeMeshesInLocalOrder) {
     // 163,842 vertices: from kParallelRows on, blocks of kSweepBlock rows, whose couplings to
     // other blocks are left to the Krylov method. Numbered level by level (the icosphere's own
     // order) most couplings cross blocks and the solver keeps complex Jacobi (the same bits);
-    // in the engine's Z-order (vertex_order.h) it sweeps, on one thread or two alike.
+    // in the engine's numbering (vertex_order.h) it sweeps, on one thread or two alike.
     const meshes::TriangleMesh sphere = meshes::radial_noise(meshes::icosphere(7), 0.05, 23);
     static_assert(fairing::detail::kSweepBlock * 4 < 163842, "several sweep blocks");
     for (bool local : {false, true}) {
-        SCOPED_TRACE(local ? "Z-order" : "level order");
+        SCOPED_TRACE(local ? "engine numbering" : "level order");
         const meshes::TriangleMesh mesh =
             local ? fairing::detail::renumbered(sphere, fairing::detail::locality_order(sphere))
                   : sphere;

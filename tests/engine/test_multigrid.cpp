@@ -525,7 +525,7 @@ TEST(Multigrid, GaussSeidelSmoothingGivesJacobisResultInFewerCycles) {
 }
 
 TEST(Multigrid, GaussSeidelSmoothingInBlocksIsTheSameOnOneAndTwoThreads) {
-    // 163,842 vertices in Z-order: blocks of kSweepBlock rows on the finest level.
+    // 163,842 vertices in the engine's numbering: blocks of kSweepBlock rows on the finest level.
     const meshes::TriangleMesh sphere = noisy_sphere(7);
     Case c = make(fairing::detail::renumbered(sphere, fairing::detail::locality_order(sphere)),
                   Operator::CurvatureFlow);
