@@ -77,9 +77,9 @@ TEST(VertexOrder, OnlyScatteredLargeMeshesAreRenumbered) {
 }
 
 // Breadth-first from a far end, every edge's two ends fall within about two fronts of the
-// search. A Z-order curve of the same positions keeps
-// most gaps small but leaves 5 % of the edges more than 768 rows apart and the largest at 23,755
-// (measured when the order changed; bench/results/issue11/auto-gap.md section 50).
+// search. The Z-order curve numbered before kept most gaps small but left 5 % of this grid's
+// edges more than 768 rows apart, the largest 23,755 (bench/results/issue11/auto-gap.md
+// section 50).
 TEST(VertexOrder, NoEdgeSpansMoreThanTwoFronts) {
     const TriangleMesh grid = noisy_torus();
     const int n = static_cast<int>(grid.positions.rows());
