@@ -70,11 +70,12 @@ std::vector<int> locality_order(const TriangleMesh& mesh) {
     // index gap of every edge, stay short.
     std::vector<int> order;
     order.reserve(static_cast<std::size_t>(n));
-    std::vector<int> seen(static_cast<std::size_t>(n), 0), probe;
+    std::vector<int> seen(static_cast<std::size_t>(n), 0);
     for (int i = 0; i < n; ++i) {
         if (seen[static_cast<std::size_t>(i)] != 0) continue;
-        probe.clear();
-        const int far_end = breadth_first(i, start.data(), column.data(), seen.data(), 1, probe);
+        const std::size_t component = order.size();
+        const int far_end = breadth_first(i, start.data(), column.data(), seen.data(), 1, order);
+        order.resize(component);  // only its last vertex was wanted
         breadth_first(far_end, start.data(), column.data(), seen.data(), 2, order);
     }
     return order;

@@ -7,12 +7,12 @@
 // do), each gather misses the cache and a CG iteration costs several times more. Numbering the
 // vertices breadth-first from a far end of each connected component (Cuthill-McKee's order,
 // without its sort by degree) puts every edge's two ends within about two fronts of the search:
-// on the 1.2 M-face Loop bunny no edge is more than 2,264 rows apart. A Z-order (Morton) curve of
+// on the 1.2 M-face Loop bunny no edge is more than 2,289 rows apart. A Z-order (Morton) curve of
 // the positions, the numbering before, kept the median gap at 5 but left 1 % of the edges more
 // than 16,384 rows apart, each a miss past the caches: the automatic strength's Lanczos steps
 // took 59 ms against 44 ms breadth-first, the one click's four curvature steps 15.8 s against
 // 10.5 s (one thread). The fronts grow with the square root of the size: on the 2.4 M-vertex
-// bunny (Loop x3) an edge spans a median 2,377 rows, more of them cross the sweep blocks
+// bunny (Loop x3) an edge spans a median 2,363 rows, more of them cross the sweep blocks
 // (sweeps.h), and its curvature steps take 297 iterations instead of 239, in 0.90x the time
 // (bench/results/issue11/auto-gap.md section 50).
 //

@@ -78,8 +78,8 @@ TEST(VertexOrder, OnlyScatteredLargeMeshesAreRenumbered) {
 
 // Breadth-first from a far end, every edge's two ends fall within about two fronts of the
 // search. The Z-order curve numbered before kept most gaps small but left 5 % of this grid's
-// edges more than 768 rows apart, the largest 23,755 (bench/results/issue11/auto-gap.md
-// section 50).
+// edges more than 768 rows apart, the largest 23,755
+// (bench/results/issue11/session50-probe/torus_gaps.py).
 TEST(VertexOrder, NoEdgeSpansMoreThanTwoFronts) {
     const TriangleMesh grid = noisy_torus();
     const int n = static_cast<int>(grid.positions.rows());
