@@ -15,16 +15,23 @@ sys.path.insert(0, os.path.join(HERE, "..", "session47-probe"))
 from bound import DT, noisy_of, run_all  # noqa: E402  (its meshes, noises, seeds and filters)
 
 
-def auto_row(noisy, clean, truth, op, steps, short):
+def auto_sweep(noisy, clean, truth, op, steps, variable, value):
+    """The automatic row of the bench build's one-click sweep (order 2, one thread), with the
+    environment variable `variable` set to `value` (None: unset)."""
     env = dict(os.environ, OMP_NUM_THREADS="1")
-    env.pop("FAIRING_SHORT", None)
-    if short:
-        env["FAIRING_SHORT"] = os.environ.get("SHORT_POINTS", "1")
+    env.pop(variable, None)
+    if value is not None:
+        env[variable] = value
     p = subprocess.run([DT, "sweep", noisy, clean, truth, op, "2", steps, "1", "--auto", "--ts",
                         "1e-9"], capture_output=True, text=True, env=env)
     auto = [json.loads(l) for l in p.stdout.splitlines()
             if l.startswith("{") and json.loads(l).get("kind") == "auto"]
-    a = auto[0] if auto else {}
+    return auto[0] if auto else {}
+
+
+def auto_row(noisy, clean, truth, op, steps, short):
+    a = auto_sweep(noisy, clean, truth, op, steps, "FAIRING_SHORT",
+                   os.environ.get("SHORT_POINTS", "1") if short else None)
     return dict(rms=a.get("rms"), ts=a.get("time_step"), lanczos=a.get("strength_iterations"))
 
 

@@ -8,24 +8,18 @@
 # and seeds of ../session47-probe/bound.py, without and with it; one JSON line per run.
 # Usage: DT=<bench build>/bin/fairing-denoise-tool BT=<...>/fairing-bench-tool W=<work dir>
 #        python3 s14.py > s14.jsonl
-import json, os, subprocess, sys
+import json, os, sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "session47-probe"))
+sys.path.insert(0, os.path.join(HERE, "..", "session48-probe"))
 import bound  # noqa: E402  (its meshes, noises and seeds)
+from short import auto_sweep  # noqa: E402
 
 bound.OPS = [("curvature", "4")]
 
 
 def auto_row(noisy, clean, truth, steps, s14):
-    env = dict(os.environ, OMP_NUM_THREADS="1")
-    env.pop("FAIRING_S14", None)
-    if s14:
-        env["FAIRING_S14"] = "1"
-    p = subprocess.run([bound.DT, "sweep", noisy, clean, truth, "curvature", "2", steps, "1",
-                        "--auto", "--ts", "1e-9"], capture_output=True, text=True, env=env)
-    auto = [json.loads(l) for l in p.stdout.splitlines()
-            if l.startswith("{") and json.loads(l).get("kind") == "auto"]
-    a = auto[0] if auto else {}
+    a = auto_sweep(noisy, clean, truth, "curvature", steps, "FAIRING_S14", "1" if s14 else None)
     return {k: a.get(k) for k in ("rms", "time_step", "strength_iterations", "operator_frozen",
                                   "recomputed_risk", "frozen_risk")}
 
