@@ -31,6 +31,15 @@ inline void check_finite(double v, int iteration) {
                     "operator, or repair the mesh first)");
 }
 
+// A hint that `address` will soon be written (a no-op where the compiler has no such builtin).
+inline void prefetch_for_write(const void* address) {
+#if defined(__GNUC__) || defined(__clang__)
+    __builtin_prefetch(address, 1);
+#else
+    (void)address;
+#endif
+}
+
 // Below this many rows a second thread costs more than it brings (starting a team, and with
 // OpenMP's default active wait, idle threads spinning against the host's own threads).
 constexpr int kParallelRows = 50000;
