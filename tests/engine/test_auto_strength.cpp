@@ -434,8 +434,8 @@ TEST(AutoStrength, ConvergedPointsOfTheRiskAreJudgedAgainAtEveryCheckpoint) {
 // Twenty closed components past the exact sketch: the sixteen largest have their restoration
 // applied in the sketch's space, the others keep the squared form (Sketch::restored). Every
 // sphere keeps its volume and the choice lands near the best fixed step: 63, 1.001x its error
-// (squared with the shrink, before: 25, 1.075x). That is one draw of the sketch: over eight
-// draws four stayed within 1.05x, the others chose 12-501 at 1.11-1.27x (auto-gap.md §51).
+// (squared with the shrink, before: 25, 1.075x). That is one draw of the sketch: over twelve
+// draws five stayed within 1.05x, seven chose 11-24 at 1.10-1.37x (auto-gap.md §51).
 TEST(AutoStrength, ManyRestoredComponentsPastTheSketchedOnes) {
     TriangleMesh m;
     const int spheres = 20;
