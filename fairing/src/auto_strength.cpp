@@ -824,10 +824,10 @@ constexpr double kGridDecades = 0.1;
 // Rows of the sketch of the normal components (exact below this many data vertices).
 constexpr int kSketch = 8192;
 // Sketch::add asks for the row of the vertex this many ahead: its rows are hashed, so nearly
-// every vertex's row is a miss of the first-level cache (of every cache on a sketch of 32,768
-// rows), and the pass otherwise waits on each in turn. Output unchanged; on the 1 M-face torus's
-// one click (one thread) 6.38 -> 5.77 s of estimate at 8,192 rows, 13.4 -> 9.4 s at 32,768
-// (bench/results/issue11/session51-probe).
+// every vertex's row is a cache miss, and the pass otherwise waits on each in turn. Output
+// unchanged; the 1 M-face torus's one click (one thread) estimated in 5.77 s instead of 6.38 s
+// at 8,192 rows, in 9.4 s instead of 13.4 s at 32,768 (auto-gap.md §51,
+// session51-probe/rows_prefetch_torus.txt).
 constexpr int kSketchPrefetch = 16;
 // Fixed chunks of rows of Sketch::add (so its sums are the same on any number of threads), and
 // the most restored components it still splits into chunks for.
