@@ -22,9 +22,10 @@
 //   which the normal residual follows for any lambda. The process stops when the risk's
 //   minimizer has settled and the curves have converged (2 % between checkpoints, three
 //   checkpoints for points far past the last converged ones; every point judged again at every
-//   checkpoint) up to twice the minimizer, or at 296 steps. Cost: two products with the system
-//   per Lanczos step, in two passes over the vectors; as many steps as Jacobi-preconditioned CG
-//   would need at the chosen step to a loose tolerance.
+//   checkpoint) up to twice the minimizer (with a sketched residual, also not before the risk
+//   has risen past the sketch's error: auto_strength.cpp, kSketchFlat), or at 296 steps. Cost:
+//   two products with the system per Lanczos step, in two passes over the vectors; as many
+//   steps as Jacobi-preconditioned CG would need at the chosen step to a loose tolerance.
 // - Risk (Stein 1981): with noise of standard deviation sigma along the normals n_i (in all
 //   directions: its normal component), and normals taken as fixed,
 //     E sum_i (n_i . (x'_i - f_i))^2 = sum_i (n_i . r_i)^2 + 2 sigma^2 tr H - N sigma^2,
