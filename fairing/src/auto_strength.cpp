@@ -860,8 +860,9 @@ constexpr double kWeightModelKeeps = 0.2;
 constexpr double kWeightedDirectVertices = 50000;
 // Second pass: points of the final lambda grid.
 constexpr int kGrid = 16;
-// Restored components whose restoration the sketch applies in its own space (the largest ones;
-// see Sketch::restored): each holds two sketched fields of kSketch rows.
+// Restored components whose fields' sketches have columns of their own (the largest ones; see
+// Sketch::restored): each holds two sketched fields of kSketch rows. The others with rows of
+// their own share one such pair (Layout::past_slots), and only their drift is not modelled.
 constexpr int kSketchedComponents = 16;
 // Sums per restored component in Sketch::add: a . n.r, s . n.r and w . n.r per column; then
 // per sketched component, drift-cancelled or not, its three moments m_d per column.
@@ -1184,10 +1185,15 @@ private:
     // shrinks it by a quarter of its radius at time step 316, had a sketched RSS_n falling from
     // 0.78 at 79 to 0.22 at 316 and chose 316 (3.2x the best fixed step's error); formed in the
     // sketch's space it chooses what the exact RSS_n chooses (bench/results/issue11/auto-gap.md
-    // section 13). Components past the kSketchedComponents largest keep the squared form,
-    // |n.r|^2 + (1 - beta)^2 |s|^2 + 2 beta (1 - beta) s . n.r or |n.r|^2 - 2 t 1 . n.r + t^2 N:
-    // their shrink stays in the sketched |n.r|^2, with its error (a bounded memory of two
-    // sketched fields per component; tests/engine: twenty spheres, four of them so).
+    // section 13). The kSketchedComponents largest hold their fields' sketches in columns of
+    // their own; the rest of those with rows of their own share one column (Layout::past_slots:
+    // their rows are disjoint, so each row takes its owner's multiple). Kept in the squared form,
+    // |n.r|^2 + (1 - beta)^2 |s|^2 + 2 beta (1 - beta) s . n.r or |n.r|^2 - 2 t 1 . n.r + t^2 N,
+    // their shrink stayed in the sketched |n.r|^2 with its error: on twenty noisy spheres (12,840
+    // vertices, tests/engine), four of them so, seven draws of the sketch in twelve chose 2.7-5.7x
+    // too weak (one draw's risk lay 0.14-1.4 N sigma^2 above another's from time step 20 on); now
+    // all twelve lie within 1.0073x (auto-gap.md section 53). The pooled components keep the
+    // squared form: they share rows.
     //
     // Why a shrink and not the linear volume V - a . n.r: a shrinking convex shape keeps more
     // volume than the linear term says (V (1 - 3 delta + 3 delta^2 - ...)), so beta came out too
@@ -1213,6 +1219,10 @@ private:
         if (l.restoration.components == 0) return sketched.squaredNorm();
         double extra = 0, weighted_beta = 0, covered = 0;
         std::vector<double> beta_of(l.restoration.components, 1.0);
+        // Layout::past_slots' components: the multiples of their fields' sketches.
+        std::vector<double> past_field(l.past_field_sketch.size() > 0 ? l.restoration.components
+                                                                      : 0, 0.0);
+        std::vector<double> past_one = past_field;
         const Eigen::Index fields = l.field_sketch.cols();
         Eigen::VectorXd along_field = Eigen::VectorXd::Zero(fields), along_one = along_field;
         Eigen::VectorXd along_normal =
@@ -1243,6 +1253,7 @@ private:
             if (offsets_k) {
                 const double t = by_volume / l.area[k];
                 if (slot >= 0) along_one(slot) = -t;
+                else if (l.past_slots[k]) past_one[k] = -t;
                 else extra += t * t * l.shape2[k] - 2 * t * by_sum;
                 if (drift_cancelled)
                     along_normal.segment<3>(3 * slot) =
@@ -1254,6 +1265,7 @@ private:
                 along_normal.segment<3>(3 * slot) =
                     -l.normal_moment[k].solve(beta * m + (1 - beta) * l.field_normal[k]);
             if (slot >= 0) along_field(slot) = 1 - beta;
+            else if (l.past_slots[k]) past_field[k] = 1 - beta;
             else extra += (1 - beta) * (1 - beta) * l.field2[k] + 2 * beta * (1 - beta) * by_field;
             weighted_beta += beta * l.count[k];
             beta_of[k] = beta;
@@ -1275,6 +1287,12 @@ private:
                            : l.owner[b] == kPooled ? pooled_beta
                                                    : beta_all;
         residual += l.field_sketch * along_field + l.one_sketch * along_one;
+        for (Eigen::Index b = 0; b < l.past_field_sketch.size(); ++b) {
+            const int k = l.owner[b];
+            if (k >= 0 && l.past_slots[k])
+                residual(b) += l.past_field_sketch(b) * past_field[k] +
+                               l.past_one_sketch(b) * past_one[k];
+        }
         if (l.drift_cancelled) residual += l.normal_sketch * along_normal;
         return extra + residual.squaredNorm();
     }
@@ -1307,6 +1325,11 @@ private:
         // of their fields s and indicators 1, one column per slot.
         std::vector<int> slot;
         Eigen::MatrixXd field_sketch, one_sketch;
+        // The components past those that own rows of their own (not pooled) on a sketch that is
+        // not exact: per component whether it is one, and the sketches of their fields s and w,
+        // one column for all (their rows are disjoint). Empty when there are none.
+        std::vector<char> past_slots;
+        Eigen::VectorXd past_field_sketch, past_one_sketch;
         double total = 0;  // data vertices
         int rows = 0;
         bool exact = false;
@@ -1396,6 +1419,7 @@ private:
                                                                       l.count.end(), 0.0));
         const std::vector<int> width = l.exact ? std::vector<int>()
                                                : rows_of(group_count, l.total, l.rows);
+        const bool own_rows_kept = !width.empty();
         std::vector<int> start(width.size() + 1, 0);
         for (std::size_t g = 0; g < width.size(); ++g) start[g + 1] = start[g] + width[g];
         int next = 0;
@@ -1445,6 +1469,23 @@ private:
             l.sum_normal[k] += r.area[i] * w * n;
         }
         for (const Eigen::Matrix3d& p : moments) l.normal_moment.emplace_back(p);
+        l.past_slots.assign(nc, 0);
+        bool any_past = false;
+        for (int k = 0; k < nc && own_rows_kept; ++k) {
+            l.past_slots[k] = l.slot[k] < 0 && !l.pooled[k] && l.count[k] > 0;
+            any_past = any_past || l.past_slots[k];
+        }
+        if (any_past) {
+            l.past_field_sketch = Eigen::VectorXd::Zero(l.rows);
+            l.past_one_sketch = Eigen::VectorXd::Zero(l.rows);
+            for (std::size_t i = 0; i < r.component.size(); ++i) {
+                const int k = r.component[i];
+                if (k < 0 || !l.past_slots[k] || l.bucket[i] < 0) continue;
+                const double sign = static_cast<double>(l.sign[i]);
+                l.past_field_sketch(l.bucket[i]) += sign * r.field[i];
+                l.past_one_sketch(l.bucket[i]) += sign * (r.shape.empty() ? 1.0 : r.shape[i]);
+            }
+        }
         return made;
     }
     explicit Sketch(std::shared_ptr<const Layout> layout) : layout_(std::move(layout)) {}

@@ -431,34 +431,38 @@ TEST(AutoStrength, ConvergedPointsOfTheRiskAreJudgedAgainAtEveryCheckpoint) {
     EXPECT_LT(r.worst, 1.1);
 }
 
-// Twenty closed components past the exact sketch: the sixteen largest have their restoration
-// applied in the sketch's space, the others keep the squared form (Sketch::restored). Every
-// sphere keeps its volume and the choice lands near the best fixed step: 63, 1.001x its error
-// (squared with the shrink, before: 25, 1.075x). That is one draw of the sketch: over twelve
-// draws five stayed within 1.05x, seven chose 11-24 at 1.10-1.37x (auto-gap.md §51).
+// Twenty closed components past the exact sketch: the sixteen largest have their fields' sketches
+// in columns of their own, the others share one, each row taking its owner's restoration
+// (Sketch::restored). Every sphere keeps its volume and the choice lands near the best fixed
+// step. Kept in the squared form, the four past the sixteen had seven draws of the sketch in
+// twelve choose 2.7-5.7x too weak (1.10-1.37x the best fixed step's error); now all twelve lie
+// within 1.0073x (auto-gap.md section 53). Three noise draws, since each moves the sketch's error.
 TEST(AutoStrength, ManyRestoredComponentsPastTheSketchedOnes) {
-    TriangleMesh m;
-    const int spheres = 20;
-    std::vector<Vec3> centres;
-    for (int k = 0; k < spheres; ++k) {
-        centres.push_back(Vec3(3.0 * k, 0, 0));
-        const TriangleMesh one = meshes::translated(noisy_sphere(0.25, 3, 40 + k), centres.back());
-        m = k == 0 ? one : meshes::merge(m, one);
+    for (int draw = 0; draw < 3; ++draw) {
+        TriangleMesh m;
+        const int spheres = 20;
+        std::vector<Vec3> centres;
+        for (int k = 0; k < spheres; ++k) {
+            centres.push_back(Vec3(3.0 * k, 0, 0));
+            const TriangleMesh one =
+                meshes::translated(noisy_sphere(0.25, 3, 40 + k + 100 * draw), centres.back());
+            m = k == 0 ? one : meshes::merge(m, one);
+        }
+        ASSERT_GT(m.positions.rows(), 8192);
+        const auto error = [&](const Positions& p) {
+            double sum = 0;
+            for (int i = 0; i < p.rows(); ++i)
+                sum += std::pow((meshes::row(p, i) - centres[i / 642]).norm() - 1.0, 2);
+            return std::sqrt(sum / p.rows());
+        };
+        const fairing::Result chosen = fairing::fair(m, {}, automatic(Operator::CurvatureFlow, 1));
+        const double best =
+            best_fixed_step_error(m, {}, automatic(Operator::CurvatureFlow, 1), 1, 1e4, 1.5, error);
+        EXPECT_LT(error(chosen.positions), 1.02 * best)
+            << "draw " << draw << ", time step " << chosen.time_step;
+        for (const fairing::ComponentReport& c : chosen.components)
+            EXPECT_NEAR(c.measure_after, c.measure_before, 1e-9 * c.measure_before);
     }
-    ASSERT_GT(m.positions.rows(), 8192);
-    const auto error = [&](const Positions& p) {
-        double sum = 0;
-        for (int i = 0; i < p.rows(); ++i)
-            sum += std::pow((meshes::row(p, i) - centres[i / 642]).norm() - 1.0, 2);
-        return std::sqrt(sum / p.rows());
-    };
-    const fairing::Result chosen = fairing::fair(m, {}, automatic(Operator::CurvatureFlow, 1));
-    const double best =
-        best_fixed_step_error(m, {}, automatic(Operator::CurvatureFlow, 1),
-                              1, 1e4, 1.5, error);
-    EXPECT_LT(error(chosen.positions), 1.05 * best) << "time step " << chosen.time_step;
-    for (const fairing::ComponentReport& c : chosen.components)
-        EXPECT_NEAR(c.measure_after, c.measure_before, 1e-9 * c.measure_before);
 }
 
 // Each restored component's factor scales its own part of the modelled residual
