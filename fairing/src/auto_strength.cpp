@@ -1325,9 +1325,9 @@ private:
         // of their fields s and indicators 1, one column per slot.
         std::vector<int> slot;
         Eigen::MatrixXd field_sketch, one_sketch;
-        // The components past those that own rows of their own (not pooled) on a sketch that is
-        // not exact: per component whether it is one, and the sketches of their fields s and w,
-        // one column for all (their rows are disjoint). Empty when there are none.
+        // On a sketch that is not exact, the components past the slotted ones that still own rows
+        // of their own (not pooled): per component whether it is one, and the sketches of their
+        // fields s and w, one column for all (their rows are disjoint). Empty when there are none.
         std::vector<char> past_slots;
         Eigen::VectorXd past_field_sketch, past_one_sketch;
         double total = 0;  // data vertices
