@@ -1219,10 +1219,10 @@ private:
         if (l.restoration.components == 0) return sketched.squaredNorm();
         double extra = 0, weighted_beta = 0, covered = 0;
         std::vector<double> beta_of(l.restoration.components, 1.0);
-        // Layout::past_slots' components: the multiples of their fields' sketches.
-        std::vector<double> past_field(l.past_field_sketch.size() > 0 ? l.restoration.components
-                                                                      : 0, 0.0);
-        std::vector<double> past_one = past_field;
+        // Layout::past_slots' offset components: -t, the multiple of their indicators' sketch
+        // (their fields' is 1 - beta_of, 0 for an offset).
+        std::vector<double> past_one(l.past_field_sketch.size() > 0 ? l.restoration.components
+                                                                    : 0, 0.0);
         const Eigen::Index fields = l.field_sketch.cols();
         Eigen::VectorXd along_field = Eigen::VectorXd::Zero(fields), along_one = along_field;
         Eigen::VectorXd along_normal =
@@ -1265,8 +1265,8 @@ private:
                 along_normal.segment<3>(3 * slot) =
                     -l.normal_moment[k].solve(beta * m + (1 - beta) * l.field_normal[k]);
             if (slot >= 0) along_field(slot) = 1 - beta;
-            else if (l.past_slots[k]) past_field[k] = 1 - beta;
-            else extra += (1 - beta) * (1 - beta) * l.field2[k] + 2 * beta * (1 - beta) * by_field;
+            else if (!l.past_slots[k])  // past_slots: 1 - beta_of[k], in the sketch's space below
+                extra += (1 - beta) * (1 - beta) * l.field2[k] + 2 * beta * (1 - beta) * by_field;
             weighted_beta += beta * l.count[k];
             beta_of[k] = beta;
         }
@@ -1290,7 +1290,7 @@ private:
         for (Eigen::Index b = 0; b < l.past_field_sketch.size(); ++b) {
             const int k = l.owner[b];
             if (k >= 0 && l.past_slots[k])
-                residual(b) += l.past_field_sketch(b) * past_field[k] +
+                residual(b) += l.past_field_sketch(b) * (1 - beta_of[k]) +
                                l.past_one_sketch(b) * past_one[k];
         }
         if (l.drift_cancelled) residual += l.normal_sketch * along_normal;
