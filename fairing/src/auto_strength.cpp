@@ -410,24 +410,39 @@ void step_group(const std::array<Context*, K>& cs, const std::array<Lanczos*, K>
     for (int k = 0; k < K; ++k)
         for (int c = 0; c < 3; ++c)
             beta_before[k][c] = ls[k]->active[c] && j > 0 ? ls[k]->beta[c][j - 1] : 0.0;
-    // Per process and column: alpha, |w'|^2, <w', v>, |v|^2.
-    const auto sums = blocked_sum<12 * K>(n, op.threads, [=](int i, double* sum) {
+    // Row i of process k: w' over v_{j-1}, and its shares of the process's sums acc (alpha,
+    // |w'|^2, <w', v>, |v|^2 per column).
+    const auto row = [=](int k, int i, double* acc, const auto& weight) {
+        double s0, s1, s2, y[3];
+        k_row_with(i, xs[k], start, column, weight, s0, s1, s2);
+        const double* x = xs[k] + 3 * i;
+        system_row(ds[k] ? ds[k][i] : 0.0, scales[k], x, s0, s1, s2, f[i] != 0, y, acc);
+        if (!f[i]) return;
+        // d_of(), from the arrays
+        const double d = soft[k] && i < data[k] ? mass[k][i] / soft[k][i] : mass[k][i];
+        const double xc[3] = {x[0], x[1], x[2]};  // read before w is written: no alias to fear
+        double* w = ws[k] + 3 * i;
+        for (int c = 0; c < 3; ++c) {
+            const double wc = y[c] / d - beta_before[k][c] * w[c];
+            w[c] = wc;
+            acc[3 + c] += d * wc * wc;
+            acc[6 + c] += d * wc * xc[c];
+            acc[9 + c] += d * xc[c] * xc[c];
+        }
+    };
+    // One process at a time over each block, its twelve sums in registers (through memory, per
+    // row, they took a load and a store each; the sums keep their row order: the same bits).
+    const auto sums = blocked_sum_by_block<12 * K>(n, op.threads, [=](int first, int end, double* sum) {
         for (int k = 0; k < K; ++k) {
-            double s0, s1, s2, y[3];
-            if (BlendLast && k == K - 1) k_row_with(i, xs[k], start, column, blend, s0, s1, s2);
-            else k_row(i, xs[k], start, column, weights[k], s0, s1, s2);
-            const double* x = xs[k] + 3 * i;
-            system_row(ds[k] ? ds[k][i] : 0.0, scales[k], x, s0, s1, s2, f[i] != 0, y, sum + 12 * k);
-            if (!f[i]) continue;
-            // d_of(), from the arrays
-            const double d = soft[k] && i < data[k] ? mass[k][i] / soft[k][i] : mass[k][i];
-            double* w = ws[k] + 3 * i;
-            for (int c = 0; c < 3; ++c) {
-                w[c] = y[c] / d - beta_before[k][c] * w[c];
-                sum[12 * k + 3 + c] += d * w[c] * w[c];
-                sum[12 * k + 6 + c] += d * w[c] * x[c];
-                sum[12 * k + 9 + c] += d * x[c] * x[c];
+            double acc[12] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+            if (BlendLast && k == K - 1) {
+                for (int i = first; i < end; ++i) row(k, i, acc, blend);
+            } else {
+                with_weights(weights[k], [&](const auto& weight) {
+                    for (int i = first; i < end; ++i) row(k, i, acc, weight);
+                });
             }
+            for (int m = 0; m < 12; ++m) sum[12 * k + m] += acc[m];
         }
     });
     for (int k = 0; k < K; ++k) {

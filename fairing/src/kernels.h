@@ -146,6 +146,27 @@ std::array<double, N> blocked_reduce(int n, int threads, RowFn fn, Combine combi
     return total;
 }
 
+// The same sums with a block's rows handed over at once: fn(first, end, a) adds the shares of
+// rows [first, end) to a[0..N-1] (zero on entry), each sum's rows in row order, and may so keep
+// a few sums at a time in registers (a pass over several processes, one process at a time);
+// the bits are those of blocked_sum with the same rows.
+template <int N, class BlockFn>
+std::array<double, N> blocked_sum_by_block(int n, int threads, BlockFn fn) {
+    const int blocks = (n + kSumBlock - 1) / kSumBlock;
+    std::vector<std::array<double, N>> partial(static_cast<std::size_t>(blocks));
+    (void)threads;
+    FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1))
+    for (int b = 0; b < blocks; ++b) {
+        std::array<double, N> a{};
+        fn(b * kSumBlock, std::min(n, (b + 1) * kSumBlock), a.data());
+        partial[static_cast<std::size_t>(b)] = a;
+    }
+    std::array<double, N> total{};
+    for (const auto& part : partial)
+        for (int k = 0; k < N; ++k) total[k] += part[k];
+    return total;
+}
+
 // The same with every entry summed.
 template <int N, class RowFn>
 std::array<double, N> blocked_sum(int n, int threads, RowFn fn) {
