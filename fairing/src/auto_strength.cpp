@@ -247,13 +247,6 @@ struct Lanczos {
     std::array<double, 3> scale{{0, 0, 0}}, shift{{0, 0, 0}};
 };
 
-// The basis vector's entry (i, c) from what `current` holds (see Lanczos::pending), written back.
-inline double settle(const Lanczos& l, const char* free, double* v, int i, int c) {
-    if (!l.pending) return v[3 * i + c];
-    v[3 * i + c] = free[i] ? (v[3 * i + c] - l.shift[c] * l.previous(i, c)) * l.scale[c] : 0.0;
-    return v[3 * i + c];
-}
-
 struct Context {
     const StrengthProblem& p;
     LinearSystem c;           // lambda_dt = length_unit, no diagonal (D = 0): apply() is unit * C
@@ -432,7 +425,7 @@ void step_group(const std::array<Context*, K>& cs, const std::array<Lanczos*, K>
     };
     // One process at a time over each block, its twelve sums in registers (through memory, per
     // row, they took a load and a store each; the sums keep their row order: the same bits).
-    const auto sums = blocked_sum_by_block<12 * K>(n, op.threads, [=](int first, int end, double* sum) {
+    const auto block = [=](int first, int end, double* sum) {
         for (int k = 0; k < K; ++k) {
             double acc[12] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
             if (BlendLast && k == K - 1) {
@@ -444,7 +437,8 @@ void step_group(const std::array<Context*, K>& cs, const std::array<Lanczos*, K>
             }
             for (int m = 0; m < 12; ++m) sum[12 * k + m] += acc[m];
         }
-    });
+    };
+    const auto sums = blocked_sum_by_block<12 * K>(n, op.threads, block);
     for (int k = 0; k < K; ++k) {
         Lanczos& l = *ls[k];
         bool cancelled = false;
@@ -858,6 +852,9 @@ constexpr int kSketchPrefetch = 16;
 // the most restored components it still splits into chunks for.
 constexpr int kSketchChunks = 8;
 constexpr int kSketchChunkComponents = 1024;
+// Rows per run of Sketch::add, which takes one process at a time over a run (their shared data
+// stays in cache between them).
+constexpr int kSketchRun = 2048;
 // Basis vectors per block of the sketch's storage (Sketch::blocks_).
 constexpr Eigen::Index kSketchBlock = 64;
 // Soft weights: the model of Context::weight_root holds where the chosen filter acts on the
@@ -985,6 +982,8 @@ public:
         double* sums = chunk_sums_.data();
         double* twin_sums = twin ? twin->chunk_sums_.data() : nullptr;
         (void)threads;
+        const Rows rows{bucket, sign, component, components_known, area, field, shape, nv,
+                        drift_cancelled, any_drift_cancelled, component_slot};
         FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1 && chunks > 1))
         for (int chunk = 0; chunk < chunks; ++chunk) {
             double* to_bucket = sums + chunk * stride;
@@ -993,46 +992,28 @@ public:
             double* to_probe = to_moment + kMomentSums;
             double* twin_bucket = twin_sums ? twin_sums + chunk * stride : nullptr;
             double* twin_component = twin_bucket ? twin_bucket + buckets : nullptr;
+            double* twin_moment =
+                twin_component ? twin_component + kComponentSums * static_cast<std::size_t>(nc)
+                               : nullptr;
             const int end = std::min(n, (chunk + 1) * per_chunk);
-            for (int i = chunk * per_chunk; i < end; ++i) {
-                const int row_ahead = i + kSketchPrefetch < end ? bucket[i + kSketchPrefetch] : -1;
-                if (row_ahead >= 0) {
-                    prefetch_for_write(to_bucket + 3 * static_cast<std::size_t>(row_ahead));
-                    if (twin_bucket)
-                        prefetch_for_write(twin_bucket + 3 * static_cast<std::size_t>(row_ahead));
-                }
-                const int b = bucket[i];
-                const int k = i < components_known ? component[i] : -1;
-                const int bi = b_sign ? b_sign[i] : 0;
-                double vi[3];
-                for (int c = 0; c < 3; ++c) vi[c] = settle(u, free, v, i, c);
+            // One process at a time over runs of kSketchRun rows, which stay in cache for the
+            // next process: its sums keep their row order (the same bits as row by row, all
+            // processes in turn), and a few of them stay in registers (add_rows).
+            for (int first = chunk * per_chunk; first < end; first += kSketchRun) {
+                const int last = std::min(end, first + kSketchRun);
+                settle_rows(u, free, v, first, last);
+                add_rows(rows, slot, v, b_sign, first, last, end, to_bucket, to_component,
+                         to_moment, to_probe);
                 if (v_partner) {
-                    for (int c = 0; c < 3; ++c) {
-                        const double vc = settle(*partner, free, v_partner, i, c);
-                        if (bi != 0 && partner_active[c]) to_probe[3 + c] += bi * nv[3 * i + c] * vc;
-                    }
+                    settle_rows(*partner, free, v_partner, first, last);
+                    if (b_sign) add_probe(b_sign, nv, v_partner, partner_active, first, last,
+                                          to_probe + 3);
                 }
-                // A drift-cancelled sketched component's vertex (Restoration, "tau").
-                const int moment_slot =
-                    k >= 0 && any_drift_cancelled && drift_cancelled[k] ? component_slot[k] : -1;
                 if (v_twin) {
-                    double ti[3];
-                    for (int c = 0; c < 3; ++c) ti[c] = settle(*twin_u, free, v_twin, i, c);
-                    if (b >= 0 || k >= 0)
-                        accumulate(twin_slot, b, k, sign[i], k >= 0 ? area[i] : 0.0,
-                                   k >= 0 ? field[i] : 0.0, nv + 3 * i, ti, twin_bucket,
-                                   twin_component, nullptr, 0, shape ? shape[i] : 1.0);
-                    if (moment_slot >= 0)
-                        add_moments(twin_slot, area[i], nv + 3 * i, ti,
-                                    twin_component + kComponentSums * static_cast<std::size_t>(nc) +
-                                        9 * moment_slot);
+                    settle_rows(*twin_u, free, v_twin, first, last);
+                    add_rows(rows, twin_slot, v_twin, nullptr, first, last, end, twin_bucket,
+                             twin_component, twin_moment, nullptr);
                 }
-                if (b < 0 && k < 0 && bi == 0) continue;
-                accumulate(slot, b, k, sign[i], k >= 0 ? area[i] : 0.0, k >= 0 ? field[i] : 0.0,
-                           nv + 3 * i, vi, to_bucket, to_component, to_probe, bi,
-                           shape ? shape[i] : 1.0);
-                if (moment_slot >= 0)
-                    add_moments(slot, area[i], nv + 3 * i, vi, to_moment + 9 * moment_slot);
             }
         }
         u.pending = false;
@@ -1094,6 +1075,99 @@ public:
     }
 
 private:
+    // What add_rows() reads of the layout, per data vertex.
+    struct Rows {
+        const int* bucket;
+        const float* sign;
+        const int* component;
+        int components_known;
+        const double *area, *field, *shape;
+        const double* nv;
+        const char* drift_cancelled;
+        bool any_drift_cancelled;
+        const int* component_slot;
+    };
+    // Forms rows [first, end) of l's pending basis vector v (Lanczos::pending): (current - shift
+    // previous) * scale on the free rows, 0 elsewhere, written back.
+    static void settle_rows(const Lanczos& l, const char* free, double* v, int first, int end) {
+        if (!l.pending) return;
+        const double* previous = l.previous.data();
+        const double shift[3] = {l.shift[0], l.shift[1], l.shift[2]};
+        const double scale[3] = {l.scale[0], l.scale[1], l.scale[2]};
+        for (int i = first; i < end; ++i)
+            for (int c = 0; c < 3; ++c)
+                v[3 * i + c] =
+                    free[i] ? (v[3 * i + c] - shift[c] * previous[3 * i + c]) * scale[c] : 0.0;
+    }
+    // One process's rows [first, end) (formed) of a chunk ending at chunk_end: each vertex's
+    // normal components n_c v_c into its bucket (b >= 0) and its component's sums (k >= 0; and
+    // add_moments()), with b_sign the probe's sums b n_c v_c too. A run of rows of one
+    // component keeps that component's nine sums in registers (loaded at the run's start and
+    // stored at its end) and the probe's three for the whole range, so every sum takes the same
+    // rows in the same order.
+    static void add_rows(const Rows& r, const std::array<Eigen::Index, 3>& slot, const double* v,
+                         const signed char* b_sign, int first, int end, int chunk_end,
+                         double* to_bucket, double* to_component, double* to_moment,
+                         double* to_probe) {
+        double probe[3] = {0, 0, 0};
+        if (to_probe)
+            for (int c = 0; c < 3; ++c) probe[c] = to_probe[c];
+        double sums[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+        int run = -1;  // the component whose sums `sums` holds
+        for (int i = first; i < end; ++i) {
+            const int ahead = i + kSketchPrefetch < chunk_end ? r.bucket[i + kSketchPrefetch] : -1;
+            if (ahead >= 0) prefetch_for_write(to_bucket + 3 * static_cast<std::size_t>(ahead));
+            const int b = r.bucket[i];
+            const int k = i < r.components_known ? r.component[i] : -1;
+            const int bi = b_sign ? b_sign[i] : 0;
+            if (k != run) {
+                if (run >= 0)
+                    for (int m = 0; m < 9; ++m) to_component[9 * run + m] = sums[m];
+                if (k >= 0)
+                    for (int m = 0; m < 9; ++m) sums[m] = to_component[9 * k + m];
+                run = k;
+            }
+            if (b < 0 && k < 0 && bi == 0) continue;
+            const double* n = r.nv + 3 * i;
+            const double* vi = v + 3 * i;
+            const double sign = static_cast<double>(r.sign[i]);
+            const double area = k >= 0 ? r.area[i] : 0.0;
+            const double field = k >= 0 ? r.field[i] : 0.0;
+            const double shape = r.shape ? r.shape[i] : 1.0;
+            for (int c = 0; c < 3; ++c) {
+                if (slot[c] < 0) continue;
+                const double nv_c = n[c] * vi[c];
+                if (b >= 0) to_bucket[3 * b + c] += sign * nv_c;
+                if (bi != 0) probe[c] += bi * nv_c;
+                if (k < 0) continue;
+                sums[c] += area * nv_c;
+                sums[3 + c] += field * nv_c;
+                sums[6 + c] += shape * nv_c;
+            }
+            const int moment_slot = k >= 0 && r.any_drift_cancelled && r.drift_cancelled[k]
+                                        ? r.component_slot[k]
+                                        : -1;
+            if (moment_slot >= 0) add_moments(slot, area, n, vi, to_moment + 9 * moment_slot);
+        }
+        if (run >= 0)
+            for (int m = 0; m < 9; ++m) to_component[9 * run + m] = sums[m];
+        if (to_probe)
+            for (int c = 0; c < 3; ++c) to_probe[c] = probe[c];
+    }
+    // The perturbed movement's probe functionals b n . v' over rows [first, end), its three sums
+    // in registers.
+    static void add_probe(const signed char* b_sign, const double* nv, const double* v,
+                          const std::array<bool, 3>& active, int first, int end,
+                          double* to_probe) {
+        double probe[3] = {to_probe[0], to_probe[1], to_probe[2]};
+        for (int i = first; i < end; ++i) {
+            const int bi = b_sign[i];
+            if (bi == 0) continue;
+            for (int c = 0; c < 3; ++c)
+                if (active[c]) probe[c] += bi * nv[3 * i + c] * v[3 * i + c];
+        }
+        for (int c = 0; c < 3; ++c) to_probe[c] = probe[c];
+    }
     // A column per active column of process l for its current basis vector (-1: inactive).
     std::array<Eigen::Index, 3> open_columns(const Lanczos& l) {
         std::array<Eigen::Index, 3> slot{{-1, -1, -1}};
@@ -1105,23 +1179,6 @@ private:
             slot[c] = used_++;
         }
         return slot;
-    }
-    // One vertex's normal components n_c v_c into its bucket (b >= 0), its component's sums
-    // (k >= 0) and, with a probe sign bi, the probe's sums.
-    static void accumulate(const std::array<Eigen::Index, 3>& slot, int b, int k, float sign,
-                           double area, double field, const double* n, const double* v,
-                           double* to_bucket, double* to_component, double* to_probe, int bi,
-                           double shape) {
-        for (int c = 0; c < 3; ++c) {
-            if (slot[c] < 0) continue;
-            const double nv_c = n[c] * v[c];
-            if (b >= 0) to_bucket[3 * b + c] += static_cast<double>(sign) * nv_c;
-            if (bi != 0) to_probe[c] += bi * nv_c;
-            if (k < 0) continue;
-            to_component[9 * k + c] += area * nv_c;
-            to_component[9 * k + 3 + c] += field * nv_c;
-            to_component[9 * k + 6 + c] += shape * nv_c;
-        }
     }
     // A drift-cancelled component's vertex: its part of m_d = sum a n_d n.r.
     static void add_moments(const std::array<Eigen::Index, 3>& slot, double area, const double* n,
