@@ -371,6 +371,26 @@ struct Blend {
     double operator[](int e) const { return ca * a[e] + cb * b[e]; }
 };
 
+// blocked_sum_by_block of a pass whose block(first, end, sum, gather) takes its gather as
+// given: compiled for AVX with AvxGather where the processor has it (has_avx()), with the same
+// bits as ScalarGather.
+template <int N, class Block>
+#ifdef FAIRING_AVX
+FAIRING_AVX_TARGET
+#endif
+std::array<double, N> sums_with_avx(int n, int threads, const Block& block) {
+#ifdef FAIRING_AVX
+    return blocked_sum_by_block<N>(n, threads, [&block](int first, int end, double* sum)
+                                                   FAIRING_AVX_TARGET {
+                                                       block(first, end, sum, AvxGather{});
+                                                   });
+#else
+    return blocked_sum_by_block<N>(n, threads, [&block](int first, int end, double* sum) {
+        block(first, end, sum, ScalarGather{});
+    });
+#endif
+}
+
 template <int K, bool BlendLast = false>
 void step_group(const std::array<Context*, K>& cs, const std::array<Lanczos*, K>& ls, int j,
                 const Blend& blend = Blend{}) {
@@ -405,9 +425,9 @@ void step_group(const std::array<Context*, K>& cs, const std::array<Lanczos*, K>
             beta_before[k][c] = ls[k]->active[c] && j > 0 ? ls[k]->beta[c][j - 1] : 0.0;
     // Row i of process k: w' over v_{j-1}, and its shares of the process's sums acc (alpha,
     // |w'|^2, <w', v>, |v|^2 per column).
-    const auto row = [=](int k, int i, double* acc, const auto& weight) {
+    const auto row = [=](int k, int i, double* acc, const auto& weight, const auto& gather) {
         double s0, s1, s2, y[3];
-        k_row_with(i, xs[k], start, column, weight, s0, s1, s2);
+        gather(i, xs[k], start, column, weight, s0, s1, s2);
         const double* x = xs[k] + 3 * i;
         system_row(ds[k] ? ds[k][i] : 0.0, scales[k], x, s0, s1, s2, f[i] != 0, y, acc);
         if (!f[i]) return;
@@ -425,20 +445,24 @@ void step_group(const std::array<Context*, K>& cs, const std::array<Lanczos*, K>
     };
     // One process at a time over each block, its twelve sums in registers (through memory, per
     // row, they took a load and a store each; the sums keep their row order: the same bits).
-    const auto block = [=](int first, int end, double* sum) {
+    const auto block = [=](int first, int end, double* sum, const auto& gather) {
         for (int k = 0; k < K; ++k) {
             double acc[12] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
             if (BlendLast && k == K - 1) {
-                for (int i = first; i < end; ++i) row(k, i, acc, blend);
+                for (int i = first; i < end; ++i) row(k, i, acc, blend, gather);
             } else {
                 with_weights(weights[k], [&](const auto& weight) {
-                    for (int i = first; i < end; ++i) row(k, i, acc, weight);
+                    for (int i = first; i < end; ++i) row(k, i, acc, weight, gather);
                 });
             }
             for (int m = 0; m < 12; ++m) sum[12 * k + m] += acc[m];
         }
     };
-    const auto sums = blocked_sum_by_block<12 * K>(n, op.threads, block);
+    const auto sums = has_avx() ? sums_with_avx<12 * K>(n, op.threads, block)
+                                : blocked_sum_by_block<12 * K>(
+                                      n, op.threads, [&block](int first, int end, double* sum) {
+                                          block(first, end, sum, ScalarGather{});
+                                      });
     for (int k = 0; k < K; ++k) {
         Lanczos& l = *ls[k];
         bool cancelled = false;

@@ -12,6 +12,10 @@
 #include <string>
 #include <vector>
 
+#if defined(__GNUC__) && defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
 #ifdef _OPENMP
 #include <omp.h>
 #define FAIRING_PRAGMA(x) _Pragma(#x)
@@ -99,6 +103,50 @@ inline void k_row_with(int i, const double* xs, const int* start, const int* col
         s2 += w * (xj[2] - xi2);
     }
 }
+
+// k_row_with as a functor (the gather a pass is compiled with).
+struct ScalarGather {
+    template <class Weights>
+    void operator()(int i, const double* xs, const int* start, const int* column,
+                    const Weights& weight, double& s0, double& s1, double& s2) const {
+        k_row_with(i, xs, start, column, weight, s0, s1, s2);
+    }
+};
+
+#if defined(__GNUC__) && defined(__x86_64__)
+#define FAIRING_AVX 1
+// k_row_with with AVX: a row's three entries in one register (a masked load, which reads no
+// byte past them), the same operations in the same order per entry, so the same bits (the
+// target is AVX alone: no fused multiply-add). Called from a pass compiled for AVX
+// (FAIRING_AVX_TARGET), where it is inlined.
+struct AvxGather {
+    template <class Weights>
+    __attribute__((target("avx"))) void operator()(int i, const double* xs, const int* start,
+                                                   const int* column, const Weights& weight,
+                                                   double& s0, double& s1, double& s2) const {
+        const __m256i three = _mm256_set_epi64x(0, -1, -1, -1);
+        const __m256d xi = _mm256_maskload_pd(xs + 3 * i, three);
+        __m256d s = _mm256_setzero_pd();
+        for (int k = start[i]; k < start[i + 1]; ++k) {
+            const __m256d xj = _mm256_maskload_pd(xs + 3 * column[k], three);
+            s = _mm256_add_pd(s, _mm256_mul_pd(_mm256_set1_pd(weight[k]), _mm256_sub_pd(xj, xi)));
+        }
+        alignas(32) double out[4];
+        _mm256_store_pd(out, s);
+        s0 = out[0];
+        s1 = out[1];
+        s2 = out[2];
+    }
+};
+#define FAIRING_AVX_TARGET __attribute__((target("avx"), flatten))
+// Whether this processor runs AVX (checked once).
+inline bool has_avx() {
+    static const bool avx = __builtin_cpu_supports("avx");
+    return avx;
+}
+#else
+inline bool has_avx() { return false; }
+#endif
 
 // k_row_with for K's weights, null when they are all 1 (weights_of).
 inline void k_row(int i, const double* xs, const int* start, const int* column,
