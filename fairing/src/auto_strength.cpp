@@ -445,6 +445,11 @@ void step_group(const std::array<Context*, K>& cs, const std::array<Lanczos*, K>
     };
     // One process at a time over each block, its twelve sums in registers (through memory, per
     // row, they took a load and a store each; the sums keep their row order: the same bits).
+    // With Sketch::add's runs and the AVX gather, the curvature flow's one click on the 1.2
+    // M-face bunny estimated in 6.4-6.9 s instead of 7.7-9.5 s (one thread, the same bytes out;
+    // auto-gap.md section 54). The passes are bound by their instructions, not by memory: one
+    // pass that forms the vectors ahead of the operator's rows instead of a pass of their own
+    // was 1.3x slower (ibid.).
     const auto block = [=](int first, int end, double* sum, const auto& gather) {
         for (int k = 0; k < K; ++k) {
             double acc[12] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};

@@ -118,7 +118,8 @@ struct ScalarGather {
 // k_row_with with AVX: a row's three entries in one register (a masked load, which reads no
 // byte past them), the same operations in the same order per entry, so the same bits (the
 // target is AVX alone: no fused multiply-add). Called from a pass compiled for AVX
-// (FAIRING_AVX_TARGET), where it is inlined.
+// (FAIRING_AVX_TARGET), where it is inlined. (Masked stores are slow on the AMD EPYC measured:
+// the sketch's pass written so ran 1.2-1.3x slower, auto-gap.md section 54.)
 struct AvxGather {
     template <class Weights>
     __attribute__((target("avx"))) void operator()(int i, const double* xs, const int* start,
