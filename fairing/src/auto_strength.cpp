@@ -1030,16 +1030,19 @@ public:
             // processes in turn), and a few of them stay in registers (add_rows).
             for (int first = chunk * per_chunk; first < end; first += kSketchRun) {
                 const int last = std::min(end, first + kSketchRun);
-                add_rows(rows, slot, Forming(u, free), v, b_sign, first, last, end, to_bucket,
-                         to_component, to_moment, to_probe);
-                if (v_partner && b_sign)
-                    add_probe(b_sign, nv, Forming(*partner, free), v_partner, partner_active,
-                              first, last, to_probe + 3);
-                else if (v_partner)
+                settle_rows(u, free, v, first, last);
+                add_rows(rows, slot, v, b_sign, first, last, end, to_bucket, to_component,
+                         to_moment, to_probe);
+                if (v_partner) {
                     settle_rows(*partner, free, v_partner, first, last);
-                if (v_twin)
-                    add_rows(rows, twin_slot, Forming(*twin_u, free), v_twin, nullptr, first,
-                             last, end, twin_bucket, twin_component, twin_moment, nullptr);
+                    if (b_sign) add_probe(b_sign, nv, v_partner, partner_active, first, last,
+                                          to_probe + 3);
+                }
+                if (v_twin) {
+                    settle_rows(*twin_u, free, v_twin, first, last);
+                    add_rows(rows, twin_slot, v_twin, nullptr, first, last, end, twin_bucket,
+                             twin_component, twin_moment, nullptr);
+                }
             }
         }
         u.pending = false;
@@ -1113,39 +1116,28 @@ private:
         bool any_drift_cancelled;
         const int* component_slot;
     };
-    // Forms a row of l's pending basis vector v (Lanczos::pending): (current - shift previous) *
-    // scale on the free rows, 0 elsewhere, written back; nothing when none is pending.
-    struct Forming {
-        Forming(const Lanczos& l, const char* free_rows)
-            : previous(l.previous.data()), free(free_rows), pending(l.pending) {
-            for (int c = 0; c < 3; ++c) shift[c] = l.shift[c], scale[c] = l.scale[c];
-        }
-        void row(double* v, int i) const {
-            if (!pending) return;
+    // Forms rows [first, end) of l's pending basis vector v (Lanczos::pending): (current - shift
+    // previous) * scale on the free rows, 0 elsewhere, written back.
+    static void settle_rows(const Lanczos& l, const char* free, double* v, int first, int end) {
+        if (!l.pending) return;
+        const double* previous = l.previous.data();
+        const double shift[3] = {l.shift[0], l.shift[1], l.shift[2]};
+        const double scale[3] = {l.scale[0], l.scale[1], l.scale[2]};
+        for (int i = first; i < end; ++i)
             for (int c = 0; c < 3; ++c)
                 v[3 * i + c] =
                     free[i] ? (v[3 * i + c] - shift[c] * previous[3 * i + c]) * scale[c] : 0.0;
-        }
-        const double* previous;
-        const char* free;
-        bool pending;
-        double shift[3], scale[3];
-    };
-    // Forms rows [first, end) of l's pending basis vector v.
-    static void settle_rows(const Lanczos& l, const char* free, double* v, int first, int end) {
-        const Forming form(l, free);
-        for (int i = first; i < end; ++i) form.row(v, i);
     }
-    // One process's rows [first, end) of a chunk ending at chunk_end, each formed first (form):
-    // each vertex's normal components n_c v_c into its bucket (b >= 0) and its component's sums
-    // (k >= 0; and add_moments()), with b_sign the probe's sums b n_c v_c too. A run of rows of
-    // one component keeps that component's nine sums in registers (loaded at the run's start
-    // and stored at its end) and the probe's three for the whole range, so every sum takes the
-    // same rows in the same order.
-    static void add_rows(const Rows& r, const std::array<Eigen::Index, 3>& slot,
-                         const Forming& form, double* v, const signed char* b_sign, int first,
-                         int end, int chunk_end, double* to_bucket, double* to_component,
-                         double* to_moment, double* to_probe) {
+    // One process's rows [first, end) (formed) of a chunk ending at chunk_end: each vertex's
+    // normal components n_c v_c into its bucket (b >= 0) and its component's sums (k >= 0; and
+    // add_moments()), with b_sign the probe's sums b n_c v_c too. A run of rows of one
+    // component keeps that component's nine sums in registers (loaded at the run's start and
+    // stored at its end) and the probe's three for the whole range, so every sum takes the same
+    // rows in the same order.
+    static void add_rows(const Rows& r, const std::array<Eigen::Index, 3>& slot, const double* v,
+                         const signed char* b_sign, int first, int end, int chunk_end,
+                         double* to_bucket, double* to_component, double* to_moment,
+                         double* to_probe) {
         double probe[3] = {0, 0, 0};
         if (to_probe)
             for (int c = 0; c < 3; ++c) probe[c] = to_probe[c];
@@ -1154,7 +1146,6 @@ private:
         for (int i = first; i < end; ++i) {
             const int ahead = i + kSketchPrefetch < chunk_end ? r.bucket[i + kSketchPrefetch] : -1;
             if (ahead >= 0) prefetch_for_write(to_bucket + 3 * static_cast<std::size_t>(ahead));
-            form.row(v, i);
             const int b = r.bucket[i];
             const int k = i < r.components_known ? r.component[i] : -1;
             const int bi = b_sign ? b_sign[i] : 0;
@@ -1192,14 +1183,13 @@ private:
         if (to_probe)
             for (int c = 0; c < 3; ++c) to_probe[c] = probe[c];
     }
-    // The perturbed movement's probe functionals b n . v' over rows [first, end), each formed
-    // first (form), its three sums in registers.
-    static void add_probe(const signed char* b_sign, const double* nv, const Forming& form,
-                          double* v, const std::array<bool, 3>& active, int first, int end,
+    // The perturbed movement's probe functionals b n . v' over rows [first, end), its three sums
+    // in registers.
+    static void add_probe(const signed char* b_sign, const double* nv, const double* v,
+                          const std::array<bool, 3>& active, int first, int end,
                           double* to_probe) {
         double probe[3] = {to_probe[0], to_probe[1], to_probe[2]};
         for (int i = first; i < end; ++i) {
-            form.row(v, i);
             const int bi = b_sign[i];
             if (bi == 0) continue;
             for (int c = 0; c < 3; ++c)

@@ -175,27 +175,19 @@ inline void system_row(double di, double scale, const double* xi, double s0, dou
 // it). The results of fair() are so bit-identical on any thread count.
 constexpr int kSumBlock = 4096;
 
-// The combine of a sum: every entry of a block's partials added to the total.
-template <int N>
-struct AddEntries {
-    void operator()(std::array<double, N>& total, const std::array<double, N>& part) const {
-        for (int k = 0; k < N; ++k) total[k] += part[k];
-    }
-};
-
-// Fixed-order reduction over rows [0, n) by blocks: block(first, end, a) adds the shares of rows
-// [first, end) to a[0..N-1] (zero on entry), each sum's rows in row order; combine(total, part)
-// folds one block's partials into the total, in block order. A block may so keep a few sums at
-// a time in registers (a pass over several processes, one process at a time).
-template <int N, class BlockFn, class Combine>
-std::array<double, N> blocked_reduce_by_block(int n, int threads, BlockFn block, Combine combine) {
+// Fixed-order reduction over rows [0, n): fn(i, a) adds row i's share to a[0..N-1] (a starts at
+// zero in every block); combine(total, part) folds one block's partials into the total, in
+// block order.
+template <int N, class RowFn, class Combine>
+std::array<double, N> blocked_reduce(int n, int threads, RowFn fn, Combine combine) {
     const int blocks = (n + kSumBlock - 1) / kSumBlock;
     std::vector<std::array<double, N>> partial(static_cast<std::size_t>(blocks));
     (void)threads;
     FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1))
     for (int b = 0; b < blocks; ++b) {
         std::array<double, N> a{};
-        block(b * kSumBlock, std::min(n, (b + 1) * kSumBlock), a.data());
+        const int end = std::min(n, (b + 1) * kSumBlock);
+        for (int i = b * kSumBlock; i < end; ++i) fn(i, a.data());
         partial[static_cast<std::size_t>(b)] = a;
     }
     std::array<double, N> total{};
@@ -203,27 +195,34 @@ std::array<double, N> blocked_reduce_by_block(int n, int threads, BlockFn block,
     return total;
 }
 
-// The same row by row: fn(i, a) adds row i's share to a[0..N-1].
-template <int N, class RowFn, class Combine>
-std::array<double, N> blocked_reduce(int n, int threads, RowFn fn, Combine combine) {
-    return blocked_reduce_by_block<N>(
-        n, threads,
-        [&fn](int first, int end, double* a) {
-            for (int i = first; i < end; ++i) fn(i, a);
-        },
-        combine);
-}
-
-// Every entry summed, by blocks (blocked_reduce_by_block).
+// The same sums with a block's rows handed over at once: fn(first, end, a) adds the shares of
+// rows [first, end) to a[0..N-1] (zero on entry), each sum's rows in row order, and may so keep
+// a few sums at a time in registers (a pass over several processes, one process at a time);
+// the bits are those of blocked_sum with the same rows.
 template <int N, class BlockFn>
-std::array<double, N> blocked_sum_by_block(int n, int threads, BlockFn block) {
-    return blocked_reduce_by_block<N>(n, threads, block, AddEntries<N>{});
+std::array<double, N> blocked_sum_by_block(int n, int threads, BlockFn fn) {
+    const int blocks = (n + kSumBlock - 1) / kSumBlock;
+    std::vector<std::array<double, N>> partial(static_cast<std::size_t>(blocks));
+    (void)threads;
+    FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1))
+    for (int b = 0; b < blocks; ++b) {
+        std::array<double, N> a{};
+        fn(b * kSumBlock, std::min(n, (b + 1) * kSumBlock), a.data());
+        partial[static_cast<std::size_t>(b)] = a;
+    }
+    std::array<double, N> total{};
+    for (const auto& part : partial)
+        for (int k = 0; k < N; ++k) total[k] += part[k];
+    return total;
 }
 
 // The same with every entry summed.
 template <int N, class RowFn>
 std::array<double, N> blocked_sum(int n, int threads, RowFn fn) {
-    return blocked_reduce<N>(n, threads, fn, AddEntries<N>{});
+    return blocked_reduce<N>(n, threads, fn,
+                             [](std::array<double, N>& total, const std::array<double, N>& part) {
+                                 for (int k = 0; k < N; ++k) total[k] += part[k];
+                             });
 }
 
 // Norm per column over the free rows, sums in a fixed order (blocked_reduce).
