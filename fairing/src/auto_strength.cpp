@@ -371,103 +371,151 @@ struct Blend {
     double operator[](int e) const { return ca * a[e] + cb * b[e]; }
 };
 
-// blocked_sum_by_block of a pass whose block(first, end, sum, gather) takes its gather as
-// given: compiled for AVX with AvxGather where the processor has it (has_avx()), with the same
-// bits as ScalarGather.
-template <int N, class Block>
-#ifdef FAIRING_AVX
-FAIRING_AVX_TARGET
-#endif
-std::array<double, N> sums_with_avx(int n, int threads, const Block& block) {
-#ifdef FAIRING_AVX
-    return blocked_sum_by_block<N>(n, threads, [&block](int first, int end, double* sum)
-                                                   FAIRING_AVX_TARGET {
-                                                       block(first, end, sum, AvxGather{});
-                                                   });
-#else
-    return blocked_sum_by_block<N>(n, threads, [&block](int first, int end, double* sum) {
-        block(first, end, sum, ScalarGather{});
-    });
-#endif
-}
+// What step_group's pass reads and writes of one process, and the rows it shares.
+struct ProcessRows {
+    const double* x;         // v_j
+    double* w;               // v_{j-1}, overwritten by w'
+    const double* diagonal;  // D of A = D - lambda_dt K, or null (0)
+    const double* mass;
+    const double* soft;  // soft weights of the data rows, or null
+    int data;            // data rows
+    double scale;        // -lambda_dt
+    double beta[3];      // beta_{j-1} per column (0 for j = 0 or an inactive column)
+    const char* free;
+    const int* start;
+    const int* column;
+};
 
-template <int K, bool BlendLast = false>
-void step_group(const std::array<Context*, K>& cs, const std::array<Lanczos*, K>& ls, int j,
-                const Blend& blend = Blend{}) {
-    const Context& ca = *cs[0];
-    const SparseOperator& op = *ca.c.op;
-    const int n = op.size();
-    const double* xs[K];
-    double* ws[K];
-    const double* ds[K];
-    const double* weights[K];
-    const double* mass[K];
-    const double* soft[K];
-    int data[K];
-    double scales[K];  // order 1: A = D - lambda_dt K
-    for (int k = 0; k < K; ++k) {
-        const Context& ck = *cs[k];
-        xs[k] = ls[k]->current.data();
-        ws[k] = ls[k]->previous.data();
-        ds[k] = ck.c.diagonal.empty() ? nullptr : ck.c.diagonal.data();
-        weights[k] = weights_of(*ck.c.op);
-        mass[k] = ck.p.op->mass.data();
-        soft[k] = ck.p.weight ? ck.p.weight->data() : nullptr;
-        data[k] = ck.p.data_vertices;
-        scales[k] = -ck.c.lambda_dt;
-    }
-    const char* f = ca.p.free->data();
-    const int* start = op.row_start.data();
-    const int* column = op.column.data();
-    std::array<std::array<double, 3>, K> beta_before{};
-    for (int k = 0; k < K; ++k)
-        for (int c = 0; c < 3; ++c)
-            beta_before[k][c] = ls[k]->active[c] && j > 0 ? ls[k]->beta[c][j - 1] : 0.0;
-    // Row i of process k: w' over v_{j-1}, and its shares of the process's sums acc (alpha,
-    // |w'|^2, <w', v>, |v|^2 per column).
-    const auto row = [=](int k, int i, double* acc, const auto& weight, const auto& gather) {
+// Rows [first, end) of process r: w' = y / d - beta_{j-1} v_{j-1} over v_{j-1}, with y = A v_j
+// (unit C v_j), and their shares of the sums acc (alpha, |w'|^2, <w', v>, |v|^2 per column),
+// each sum in row order. One process at a time over a block keeps its twelve sums in
+// registers (through memory, per row, they took a load and a store each).
+template <class Weights>
+void process_rows(const ProcessRows& r, const Weights& weight, int first, int end, double* acc) {
+    for (int i = first; i < end; ++i) {
         double s0, s1, s2, y[3];
-        gather(i, xs[k], start, column, weight, s0, s1, s2);
-        const double* x = xs[k] + 3 * i;
-        system_row(ds[k] ? ds[k][i] : 0.0, scales[k], x, s0, s1, s2, f[i] != 0, y, acc);
-        if (!f[i]) return;
+        k_row_with(i, r.x, r.start, r.column, weight, s0, s1, s2);
+        const double* x = r.x + 3 * i;
+        system_row(r.diagonal ? r.diagonal[i] : 0.0, r.scale, x, s0, s1, s2, r.free[i] != 0, y,
+                   acc);
+        if (!r.free[i]) continue;
         // d_of(), from the arrays
-        const double d = soft[k] && i < data[k] ? mass[k][i] / soft[k][i] : mass[k][i];
+        const double d = r.soft && i < r.data ? r.mass[i] / r.soft[i] : r.mass[i];
         const double xc[3] = {x[0], x[1], x[2]};  // read before w is written: no alias to fear
-        double* w = ws[k] + 3 * i;
+        double* w = r.w + 3 * i;
         for (int c = 0; c < 3; ++c) {
-            const double wc = y[c] / d - beta_before[k][c] * w[c];
+            const double wc = y[c] / d - r.beta[c] * w[c];
             w[c] = wc;
             acc[3 + c] += d * wc * wc;
             acc[6 + c] += d * wc * xc[c];
             acc[9 + c] += d * xc[c] * xc[c];
         }
-    };
-    // One process at a time over each block, its twelve sums in registers (through memory, per
-    // row, they took a load and a store each; the sums keep their row order: the same bits).
-    // With Sketch::add's runs and the AVX gather, the curvature flow's one click on the 1.2
-    // M-face bunny estimated in 6.4-6.9 s instead of 7.7-9.5 s (one thread, the same bytes out;
-    // auto-gap.md section 54). The passes are bound by their instructions, not by memory: one
-    // pass that forms the vectors ahead of the operator's rows instead of a pass of their own
-    // was 1.3x slower (ibid.).
-    const auto block = [=](int first, int end, double* sum, const auto& gather) {
-        for (int k = 0; k < K; ++k) {
-            double acc[12] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
-            if (BlendLast && k == K - 1) {
-                for (int i = first; i < end; ++i) row(k, i, acc, blend, gather);
-            } else {
-                with_weights(weights[k], [&](const auto& weight) {
-                    for (int i = first; i < end; ++i) row(k, i, acc, weight, gather);
-                });
-            }
-            for (int m = 0; m < 12; ++m) sum[12 * k + m] += acc[m];
-        }
-    };
-    const auto sums = has_avx() ? sums_with_avx<12 * K>(n, op.threads, block)
-                                : blocked_sum_by_block<12 * K>(
-                                      n, op.threads, [&block](int first, int end, double* sum) {
-                                          block(first, end, sum, ScalarGather{});
-                                      });
+    }
+}
+
+#ifdef FAIRING_AVX
+// process_rows in AVX, lane c column c: every entry goes through the same operations in the same
+// order (the target is AVX alone, no fused multiply-add), so the bits are the same. A row's
+// three divisions y / d take one instruction. The curvature flow's one-click estimate, one
+// thread, the least of three alternating runs: the 1.2 M-face bunny 7.67 s against 7.98 s in
+// scalar, the 1 M-face torus 6.40 s against 6.91 s (auto-gap.md section 55).
+template <class Weights>
+__attribute__((target("avx"))) void process_rows_avx(const ProcessRows& r, const Weights& weight,
+                                                     int first, int end, double* acc) {
+    const AvxGather gather;
+    const __m256d scale = _mm256_set1_pd(r.scale);
+    const __m256d beta = _mm256_setr_pd(r.beta[0], r.beta[1], r.beta[2], 0.0);
+    __m256d alpha = load_row(acc), ww = load_row(acc + 3), wx = load_row(acc + 6),
+            xx = load_row(acc + 9);
+    for (int i = first; i < end; ++i) {
+        const __m256d x = load_row(r.x + 3 * i);
+        const __m256d s = gather.sum(i, r.x, r.start, r.column, weight, x);
+        const __m256d diagonal = _mm256_set1_pd(r.diagonal ? r.diagonal[i] : 0.0);
+        const __m256d y = _mm256_add_pd(_mm256_mul_pd(diagonal, x), _mm256_mul_pd(scale, s));
+        if (!r.free[i]) continue;
+        alpha = _mm256_add_pd(alpha, _mm256_mul_pd(x, y));
+        const __m256d d =
+            _mm256_set1_pd(r.soft && i < r.data ? r.mass[i] / r.soft[i] : r.mass[i]);
+        double* at = r.w + 3 * i;
+        const __m256d w =
+            _mm256_sub_pd(_mm256_div_pd(y, d), _mm256_mul_pd(beta, load_row(at)));
+        store_row(at, w);
+        const __m256d dw = _mm256_mul_pd(d, w);
+        ww = _mm256_add_pd(ww, _mm256_mul_pd(dw, w));
+        wx = _mm256_add_pd(wx, _mm256_mul_pd(dw, x));
+        xx = _mm256_add_pd(xx, _mm256_mul_pd(_mm256_mul_pd(d, x), x));
+    }
+    store_row(acc, alpha);
+    store_row(acc + 3, ww);
+    store_row(acc + 6, wx);
+    store_row(acc + 9, xx);
+}
+#endif
+
+// Rows [first, end) of every process in turn (process_rows, or with Avx process_rows_avx),
+// their sums added to sum[12 k ..].
+template <int K, bool BlendLast, bool Avx>
+void group_rows(const std::array<ProcessRows, K>& rs, const std::array<const double*, K>& weights,
+                const Blend& blend, int first, int end, double* sum) {
+    for (int k = 0; k < K; ++k) {
+        double acc[12] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+        const auto rows = [&](const auto& weight) {
+#ifdef FAIRING_AVX
+            if constexpr (Avx) return process_rows_avx(rs[k], weight, first, end, acc);
+#endif
+            process_rows(rs[k], weight, first, end, acc);
+        };
+        if (BlendLast && k == K - 1) rows(blend);
+        else with_weights(weights[k], rows);
+        for (int m = 0; m < 12; ++m) sum[12 * k + m] += acc[m];
+    }
+}
+
+#ifdef FAIRING_AVX
+// group_rows compiled for AVX, for a processor that has it (has_avx()).
+template <int K, bool BlendLast>
+FAIRING_AVX_TARGET void group_rows_avx(const std::array<ProcessRows, K>& rs,
+                                       const std::array<const double*, K>& weights,
+                                       const Blend& blend, int first, int end, double* sum) {
+    group_rows<K, BlendLast, true>(rs, weights, blend, first, end, sum);
+}
+#endif
+
+template <int K, bool BlendLast = false>
+void step_group(const std::array<Context*, K>& cs, const std::array<Lanczos*, K>& ls, int j,
+                const Blend& blend = Blend{}) {
+    const SparseOperator& op = *cs[0]->c.op;
+    std::array<ProcessRows, K> rs;
+    std::array<const double*, K> weights;
+    for (int k = 0; k < K; ++k) {
+        const Context& ck = *cs[k];
+        ProcessRows& r = rs[k];
+        r.x = ls[k]->current.data();
+        r.w = ls[k]->previous.data();
+        r.diagonal = ck.c.diagonal.empty() ? nullptr : ck.c.diagonal.data();
+        r.mass = ck.p.op->mass.data();
+        r.soft = ck.p.weight ? ck.p.weight->data() : nullptr;
+        r.data = ck.p.data_vertices;
+        r.scale = -ck.c.lambda_dt;  // order 1: A = D - lambda_dt K
+        for (int c = 0; c < 3; ++c)
+            r.beta[c] = ls[k]->active[c] && j > 0 ? ls[k]->beta[c][j - 1] : 0.0;
+        r.free = cs[0]->p.free->data();
+        r.start = op.row_start.data();
+        r.column = op.column.data();
+        weights[k] = weights_of(*ck.c.op);
+    }
+    // The passes are bound by their instructions, not by memory: one pass that forms the vectors
+    // ahead of the operator's rows instead of a pass of their own was 1.3x slower (auto-gap.md
+    // section 54).
+    const bool avx = has_avx();
+    const auto sums = blocked_sum_by_block<12 * K>(
+        op.size(), op.threads, [&](int first, int end, double* sum) {
+#ifdef FAIRING_AVX
+            if (avx) return group_rows_avx<K, BlendLast>(rs, weights, blend, first, end, sum);
+#endif
+            (void)avx;
+            group_rows<K, BlendLast, false>(rs, weights, blend, first, end, sum);
+        });
     for (int k = 0; k < K; ++k) {
         Lanczos& l = *ls[k];
         bool cancelled = false;
@@ -1013,6 +1061,8 @@ public:
         (void)threads;
         const Rows rows{bucket, sign, component, components_known, area, field, shape, nv,
                         drift_cancelled, any_drift_cancelled, component_slot};
+        const bool avx = has_avx();
+        (void)avx;
         FAIRING_PRAGMA(omp parallel for num_threads(threads) schedule(static) if(threads > 1 && chunks > 1))
         for (int chunk = 0; chunk < chunks; ++chunk) {
             double* to_bucket = sums + chunk * stride;
@@ -1030,19 +1080,29 @@ public:
             // processes in turn), and a few of them stay in registers (add_rows).
             for (int first = chunk * per_chunk; first < end; first += kSketchRun) {
                 const int last = std::min(end, first + kSketchRun);
-                settle_rows(u, free, v, first, last);
-                add_rows(rows, slot, v, b_sign, first, last, end, to_bucket, to_component,
-                         to_moment, to_probe);
-                if (v_partner) {
-                    settle_rows(*partner, free, v_partner, first, last);
-                    if (b_sign) add_probe(b_sign, nv, v_partner, partner_active, first, last,
-                                          to_probe + 3);
+                const auto run = [&](auto lanes) {
+                    lanes.settle_rows(u, free, v, first, last);
+                    lanes.add_rows(rows, slot, v, b_sign, first, last, end, to_bucket,
+                                   to_component, to_moment, to_probe);
+                    if (v_partner) {
+                        lanes.settle_rows(*partner, free, v_partner, first, last);
+                        if (b_sign)
+                            lanes.add_probe(b_sign, nv, v_partner, partner_active, first, last,
+                                            to_probe + 3);
+                    }
+                    if (v_twin) {
+                        lanes.settle_rows(*twin_u, free, v_twin, first, last);
+                        lanes.add_rows(rows, twin_slot, v_twin, nullptr, first, last, end,
+                                       twin_bucket, twin_component, twin_moment, nullptr);
+                    }
+                };
+#ifdef FAIRING_AVX
+                if (avx) {
+                    run(AvxLanes{});
+                    continue;
                 }
-                if (v_twin) {
-                    settle_rows(*twin_u, free, v_twin, first, last);
-                    add_rows(rows, twin_slot, v_twin, nullptr, first, last, end, twin_bucket,
-                             twin_component, twin_moment, nullptr);
-                }
+#endif
+                run(ScalarLanes{});
             }
         }
         u.pending = false;
@@ -1116,87 +1176,196 @@ private:
         bool any_drift_cancelled;
         const int* component_slot;
     };
-    // Forms rows [first, end) of l's pending basis vector v (Lanczos::pending): (current - shift
-    // previous) * scale on the free rows, 0 elsewhere, written back.
-    static void settle_rows(const Lanczos& l, const char* free, double* v, int first, int end) {
-        if (!l.pending) return;
-        const double* previous = l.previous.data();
-        const double shift[3] = {l.shift[0], l.shift[1], l.shift[2]};
-        const double scale[3] = {l.scale[0], l.scale[1], l.scale[2]};
-        for (int i = first; i < end; ++i)
-            for (int c = 0; c < 3; ++c)
-                v[3 * i + c] =
-                    free[i] ? (v[3 * i + c] - shift[c] * previous[3 * i + c]) * scale[c] : 0.0;
-    }
-    // One process's rows [first, end) (formed) of a chunk ending at chunk_end: each vertex's
-    // normal components n_c v_c into its bucket (b >= 0) and its component's sums (k >= 0; and
-    // add_moments()), with b_sign the probe's sums b n_c v_c too. A run of rows of one
-    // component keeps that component's nine sums in registers (loaded at the run's start and
-    // stored at its end) and the probe's three for the whole range, so every sum takes the same
-    // rows in the same order.
-    static void add_rows(const Rows& r, const std::array<Eigen::Index, 3>& slot, const double* v,
-                         const signed char* b_sign, int first, int end, int chunk_end,
-                         double* to_bucket, double* to_component, double* to_moment,
-                         double* to_probe) {
-        double probe[3] = {0, 0, 0};
-        if (to_probe)
-            for (int c = 0; c < 3; ++c) probe[c] = to_probe[c];
-        double sums[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-        int run = -1;  // the component whose sums `sums` holds
-        for (int i = first; i < end; ++i) {
-            const int ahead = i + kSketchPrefetch < chunk_end ? r.bucket[i + kSketchPrefetch] : -1;
-            if (ahead >= 0) prefetch_for_write(to_bucket + 3 * static_cast<std::size_t>(ahead));
-            const int b = r.bucket[i];
-            const int k = i < r.components_known ? r.component[i] : -1;
-            const int bi = b_sign ? b_sign[i] : 0;
-            if (k != run) {
-                if (run >= 0)
-                    for (int m = 0; m < 9; ++m) to_component[9 * run + m] = sums[m];
-                if (k >= 0)
-                    for (int m = 0; m < 9; ++m) sums[m] = to_component[9 * k + m];
-                run = k;
-            }
-            if (b < 0 && k < 0 && bi == 0) continue;
-            const double* n = r.nv + 3 * i;
-            const double* vi = v + 3 * i;
-            const double sign = static_cast<double>(r.sign[i]);
-            const double area = k >= 0 ? r.area[i] : 0.0;
-            const double field = k >= 0 ? r.field[i] : 0.0;
-            const double shape = r.shape ? r.shape[i] : 1.0;
-            for (int c = 0; c < 3; ++c) {
-                if (slot[c] < 0) continue;
-                const double nv_c = n[c] * vi[c];
-                if (b >= 0) to_bucket[3 * b + c] += sign * nv_c;
-                if (bi != 0) probe[c] += bi * nv_c;
-                if (k < 0) continue;
-                sums[c] += area * nv_c;
-                sums[3 + c] += field * nv_c;
-                sums[6 + c] += shape * nv_c;
-            }
-            const int moment_slot = k >= 0 && r.any_drift_cancelled && r.drift_cancelled[k]
-                                        ? r.component_slot[k]
-                                        : -1;
-            if (moment_slot >= 0) add_moments(slot, area, n, vi, to_moment + 9 * moment_slot);
+    // Sketch::add's work on one run of rows, one process at a time, row by row (ScalarLanes) or
+    // with a row's three columns in one register (AvxLanes, the same bits).
+    struct ScalarLanes {
+        // Forms rows [first, end) of l's pending basis vector v (Lanczos::pending): (current - shift
+        // previous) * scale on the free rows, 0 elsewhere, written back.
+        void settle_rows(const Lanczos& l, const char* free, double* v, int first, int end) {
+            if (!l.pending) return;
+            const double* previous = l.previous.data();
+            const double shift[3] = {l.shift[0], l.shift[1], l.shift[2]};
+            const double scale[3] = {l.scale[0], l.scale[1], l.scale[2]};
+            for (int i = first; i < end; ++i)
+                for (int c = 0; c < 3; ++c)
+                    v[3 * i + c] =
+                        free[i] ? (v[3 * i + c] - shift[c] * previous[3 * i + c]) * scale[c] : 0.0;
         }
-        if (run >= 0)
-            for (int m = 0; m < 9; ++m) to_component[9 * run + m] = sums[m];
-        if (to_probe)
+        // One process's rows [first, end) (formed) of a chunk ending at chunk_end: each vertex's
+        // normal components n_c v_c into its bucket (b >= 0) and its component's sums (k >= 0; and
+        // add_moments()), with b_sign the probe's sums b n_c v_c too. A run of rows of one
+        // component keeps that component's nine sums in registers (loaded at the run's start and
+        // stored at its end) and the probe's three for the whole range, so every sum takes the same
+        // rows in the same order.
+        void add_rows(const Rows& r, const std::array<Eigen::Index, 3>& slot, const double* v,
+                             const signed char* b_sign, int first, int end, int chunk_end,
+                             double* to_bucket, double* to_component, double* to_moment,
+                             double* to_probe) {
+            double probe[3] = {0, 0, 0};
+            if (to_probe)
+                for (int c = 0; c < 3; ++c) probe[c] = to_probe[c];
+            double sums[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+            int run = -1;  // the component whose sums `sums` holds
+            for (int i = first; i < end; ++i) {
+                const int ahead = i + kSketchPrefetch < chunk_end ? r.bucket[i + kSketchPrefetch] : -1;
+                if (ahead >= 0) prefetch_for_write(to_bucket + 3 * static_cast<std::size_t>(ahead));
+                const int b = r.bucket[i];
+                const int k = i < r.components_known ? r.component[i] : -1;
+                const int bi = b_sign ? b_sign[i] : 0;
+                if (k != run) {
+                    if (run >= 0)
+                        for (int m = 0; m < 9; ++m) to_component[9 * run + m] = sums[m];
+                    if (k >= 0)
+                        for (int m = 0; m < 9; ++m) sums[m] = to_component[9 * k + m];
+                    run = k;
+                }
+                if (b < 0 && k < 0 && bi == 0) continue;
+                const double* n = r.nv + 3 * i;
+                const double* vi = v + 3 * i;
+                const double sign = static_cast<double>(r.sign[i]);
+                const double area = k >= 0 ? r.area[i] : 0.0;
+                const double field = k >= 0 ? r.field[i] : 0.0;
+                const double shape = r.shape ? r.shape[i] : 1.0;
+                for (int c = 0; c < 3; ++c) {
+                    if (slot[c] < 0) continue;
+                    const double nv_c = n[c] * vi[c];
+                    if (b >= 0) to_bucket[3 * b + c] += sign * nv_c;
+                    if (bi != 0) probe[c] += bi * nv_c;
+                    if (k < 0) continue;
+                    sums[c] += area * nv_c;
+                    sums[3 + c] += field * nv_c;
+                    sums[6 + c] += shape * nv_c;
+                }
+                const int moment_slot = k >= 0 && r.any_drift_cancelled && r.drift_cancelled[k]
+                                            ? r.component_slot[k]
+                                            : -1;
+                if (moment_slot >= 0) add_moments(slot, area, n, vi, to_moment + 9 * moment_slot);
+            }
+            if (run >= 0)
+                for (int m = 0; m < 9; ++m) to_component[9 * run + m] = sums[m];
+            if (to_probe)
+                for (int c = 0; c < 3; ++c) to_probe[c] = probe[c];
+        }
+        // The perturbed movement's probe functionals b n . v' over rows [first, end), its three sums
+        // in registers.
+        void add_probe(const signed char* b_sign, const double* nv, const double* v,
+                              const std::array<bool, 3>& active, int first, int end,
+                              double* to_probe) {
+            double probe[3] = {to_probe[0], to_probe[1], to_probe[2]};
+            for (int i = first; i < end; ++i) {
+                const int bi = b_sign[i];
+                if (bi == 0) continue;
+                for (int c = 0; c < 3; ++c)
+                    if (active[c]) probe[c] += bi * nv[3 * i + c] * v[3 * i + c];
+            }
             for (int c = 0; c < 3; ++c) to_probe[c] = probe[c];
-    }
-    // The perturbed movement's probe functionals b n . v' over rows [first, end), its three sums
-    // in registers.
-    static void add_probe(const signed char* b_sign, const double* nv, const double* v,
-                          const std::array<bool, 3>& active, int first, int end,
-                          double* to_probe) {
-        double probe[3] = {to_probe[0], to_probe[1], to_probe[2]};
-        for (int i = first; i < end; ++i) {
-            const int bi = b_sign[i];
-            if (bi == 0) continue;
-            for (int c = 0; c < 3; ++c)
-                if (active[c]) probe[c] += bi * nv[3 * i + c] * v[3 * i + c];
         }
-        for (int c = 0; c < 3; ++c) to_probe[c] = probe[c];
-    }
+    };
+#ifdef FAIRING_AVX
+    // ScalarLanes's passes in AVX, lane c column c: every entry goes through the same operations
+    // in the same order (the target is AVX alone, no fused multiply-add), so the bits are the
+    // same. A row is loaded with load_row and stored with store_row (no masked store), a
+    // bucket likewise. Lanes of inactive columns are zeroed before they are added anywhere.
+    // With process_rows_avx, the bunny's one-click estimate (as there) took 7.54 s against
+    // 8.51 s, the least of five alternating runs (auto-gap.md section 55).
+    struct AvxLanes {
+        static __attribute__((target("avx"))) __m256d lanes_of(const std::array<bool, 3>& on) {
+            return _mm256_castsi256_pd(_mm256_set_epi64x(0, on[2] ? -1 : 0, on[1] ? -1 : 0,
+                                                         on[0] ? -1 : 0));
+        }
+        __attribute__((target("avx"))) void settle_rows(const Lanczos& l, const char* free,
+                                                        double* v, int first, int end) const {
+            if (!l.pending) return;
+            const double* previous = l.previous.data();
+            const __m256d shift = _mm256_setr_pd(l.shift[0], l.shift[1], l.shift[2], 0.0);
+            const __m256d scale = _mm256_setr_pd(l.scale[0], l.scale[1], l.scale[2], 0.0);
+            for (int i = first; i < end; ++i) {
+                double* at = v + 3 * i;
+                if (!free[i]) {
+                    store_row(at, _mm256_setzero_pd());
+                    continue;
+                }
+                const __m256d moved = _mm256_mul_pd(shift, load_row(previous + 3 * i));
+                store_row(at, _mm256_mul_pd(_mm256_sub_pd(load_row(at), moved), scale));
+            }
+        }
+        __attribute__((target("avx"))) void add_rows(const Rows& r,
+                                                     const std::array<Eigen::Index, 3>& slot,
+                                                     const double* v, const signed char* b_sign,
+                                                     int first, int end, int chunk_end,
+                                                     double* to_bucket, double* to_component,
+                                                     double* to_moment, double* to_probe) const {
+            const __m256d active = lanes_of({{slot[0] >= 0, slot[1] >= 0, slot[2] >= 0}});
+            __m256d probe = to_probe ? load_row(to_probe) : _mm256_setzero_pd();
+            __m256d by_area = _mm256_setzero_pd(), by_field = by_area, by_shape = by_area;
+            int run = -1;  // the component whose sums by_area, by_field and by_shape hold
+            for (int i = first; i < end; ++i) {
+                const int ahead =
+                    i + kSketchPrefetch < chunk_end ? r.bucket[i + kSketchPrefetch] : -1;
+                if (ahead >= 0)
+                    prefetch_for_write(to_bucket + 3 * static_cast<std::size_t>(ahead));
+                const int b = r.bucket[i];
+                const int k = i < r.components_known ? r.component[i] : -1;
+                const int bi = b_sign ? b_sign[i] : 0;
+                if (k != run) {
+                    if (run >= 0) {
+                        store_row(to_component + 9 * run, by_area);
+                        store_row(to_component + 9 * run + 3, by_field);
+                        store_row(to_component + 9 * run + 6, by_shape);
+                    }
+                    if (k >= 0) {
+                        by_area = load_row(to_component + 9 * k);
+                        by_field = load_row(to_component + 9 * k + 3);
+                        by_shape = load_row(to_component + 9 * k + 6);
+                    }
+                    run = k;
+                }
+                if (b < 0 && k < 0 && bi == 0) continue;
+                const double* n = r.nv + 3 * i;
+                const double* vi = v + 3 * i;
+                const __m256d nv = _mm256_and_pd(_mm256_mul_pd(load_row(n), load_row(vi)), active);
+                if (b >= 0) {
+                    double* at = to_bucket + 3 * b;
+                    const __m256d sign = _mm256_set1_pd(static_cast<double>(r.sign[i]));
+                    store_row(at, _mm256_add_pd(load_row(at), _mm256_mul_pd(sign, nv)));
+                }
+                if (bi != 0)
+                    probe = _mm256_add_pd(probe, _mm256_mul_pd(_mm256_set1_pd(bi), nv));
+                if (k < 0) continue;
+                const double area = r.area[i];
+                by_area = _mm256_add_pd(by_area, _mm256_mul_pd(_mm256_set1_pd(area), nv));
+                by_field = _mm256_add_pd(by_field, _mm256_mul_pd(_mm256_set1_pd(r.field[i]), nv));
+                by_shape = _mm256_add_pd(
+                    by_shape, _mm256_mul_pd(_mm256_set1_pd(r.shape ? r.shape[i] : 1.0), nv));
+                const int moment_slot =
+                    r.any_drift_cancelled && r.drift_cancelled[k] ? r.component_slot[k] : -1;
+                if (moment_slot >= 0) add_moments(slot, area, n, vi, to_moment + 9 * moment_slot);
+            }
+            if (run >= 0) {
+                store_row(to_component + 9 * run, by_area);
+                store_row(to_component + 9 * run + 3, by_field);
+                store_row(to_component + 9 * run + 6, by_shape);
+            }
+            if (to_probe) store_row(to_probe, probe);
+        }
+        __attribute__((target("avx"))) void add_probe(const signed char* b_sign,
+                                                      const double* nv, const double* v,
+                                                      const std::array<bool, 3>& active,
+                                                      int first, int end,
+                                                      double* to_probe) const {
+            const __m256d on = lanes_of(active);
+            __m256d probe = load_row(to_probe);
+            for (int i = first; i < end; ++i) {
+                const int bi = b_sign[i];
+                if (bi == 0) continue;
+                const __m256d term = _mm256_mul_pd(
+                    _mm256_mul_pd(_mm256_set1_pd(bi), load_row(nv + 3 * i)), load_row(v + 3 * i));
+                probe = _mm256_add_pd(probe, _mm256_and_pd(term, on));
+            }
+            store_row(to_probe, probe);
+        }
+    };
+#endif
     // A column per active column of process l for its current basis vector (-1: inactive).
     std::array<Eigen::Index, 3> open_columns(const Lanczos& l) {
         std::array<Eigen::Index, 3> slot{{-1, -1, -1}};

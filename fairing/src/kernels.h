@@ -104,39 +104,35 @@ inline void k_row_with(int i, const double* xs, const int* start, const int* col
     }
 }
 
-// k_row_with as a functor (the gather a pass is compiled with).
-struct ScalarGather {
-    template <class Weights>
-    void operator()(int i, const double* xs, const int* start, const int* column,
-                    const Weights& weight, double& s0, double& s1, double& s2) const {
-        k_row_with(i, xs, start, column, weight, s0, s1, s2);
-    }
-};
-
 #if defined(__GNUC__) && defined(__x86_64__)
 #define FAIRING_AVX 1
-// k_row_with with AVX: a row's three entries in one register (a masked load, which reads no
-// byte past them), the same operations in the same order per entry, so the same bits (the
-// target is AVX alone: no fused multiply-add). Called from a pass compiled for AVX
-// (FAIRING_AVX_TARGET), where it is inlined. (Masked stores are slow on the AMD EPYC measured:
-// the sketch's pass written so ran 1.2-1.3x slower, auto-gap.md section 54.)
+// A row's three entries in one register, lane 3 zero: a masked load, which reads no byte past
+// them.
+__attribute__((target("avx"))) inline __m256d load_row(const double* at) {
+    return _mm256_maskload_pd(at, _mm256_set_epi64x(0, -1, -1, -1));
+}
+// Lanes 0-2 stored as the row's three entries: two plain stores, none past them. (Masked stores
+// are slow on the AMD EPYC measured: the sketch's pass written with them ran 1.2-1.3x slower,
+// auto-gap.md section 54.)
+__attribute__((target("avx"))) inline void store_row(double* at, __m256d row) {
+    _mm_storeu_pd(at, _mm256_castpd256_pd128(row));
+    _mm_store_sd(at + 2, _mm256_extractf128_pd(row, 1));
+}
+// k_row_with with AVX: a row's three entries in one register (load_row), the same operations in
+// the same order per entry, so the same bits (the target is AVX alone: no fused multiply-add).
+// Called from a pass compiled for AVX (FAIRING_AVX_TARGET), where it is inlined.
 struct AvxGather {
+    // (K x)_i in lanes 0-2, given xi = load_row(xs + 3 i).
     template <class Weights>
-    __attribute__((target("avx"))) void operator()(int i, const double* xs, const int* start,
-                                                   const int* column, const Weights& weight,
-                                                   double& s0, double& s1, double& s2) const {
-        const __m256i three = _mm256_set_epi64x(0, -1, -1, -1);
-        const __m256d xi = _mm256_maskload_pd(xs + 3 * i, three);
+    __attribute__((target("avx"))) __m256d sum(int i, const double* xs, const int* start,
+                                               const int* column, const Weights& weight,
+                                               __m256d xi) const {
         __m256d s = _mm256_setzero_pd();
         for (int k = start[i]; k < start[i + 1]; ++k) {
-            const __m256d xj = _mm256_maskload_pd(xs + 3 * column[k], three);
+            const __m256d xj = load_row(xs + 3 * column[k]);
             s = _mm256_add_pd(s, _mm256_mul_pd(_mm256_set1_pd(weight[k]), _mm256_sub_pd(xj, xi)));
         }
-        alignas(32) double out[4];
-        _mm256_store_pd(out, s);
-        s0 = out[0];
-        s1 = out[1];
-        s2 = out[2];
+        return s;
     }
 };
 #define FAIRING_AVX_TARGET __attribute__((target("avx"), flatten))
