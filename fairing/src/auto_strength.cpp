@@ -763,9 +763,12 @@ SparseOperator later_operator(const StrengthProblem& p, const Positions& x,
     return p.assemble_at(smooth);
 }
 
-void model_steps(const StrengthProblem& p, const Positions& x, SparseOperator& first) {
+// model_steps: see above. `kept` (optional) takes the later steps' operator, which later_steps()
+// would otherwise assemble again at the same positions.
+void model_steps(const StrengthProblem& p, const Positions& x, SparseOperator& first,
+                 SparseOperator* kept = nullptr) {
     if (!p.pilot) return;
-    const SparseOperator later = later_operator(p, x, first);
+    SparseOperator later = later_operator(p, x, first);
     if (later.column != first.column || later.row_start != first.row_start) return;
     const double share = (p.steps - 1.0) / p.steps;
     for (std::size_t k = 0; k < first.weight.size(); ++k)
@@ -773,6 +776,7 @@ void model_steps(const StrengthProblem& p, const Positions& x, SparseOperator& f
     first.unit_weights = false;
     for (std::size_t i = 0; i < first.mass.size(); ++i)
         first.mass[i] += share * (later.mass[i] - first.mass[i]);
+    if (kept) *kept = std::move(later);
 }
 
 // The perturbed problem, or nothing when the operator is linear in the data or the perturbed
@@ -2107,7 +2111,8 @@ constexpr int kSmoothingPasses = 4;
 
 StrengthEstimate risk_minimum(const StrengthProblem& p, const Positions& normals, StrengthEstimate e,
                               bool model_weights = true, SparseOperator* assembled = nullptr,
-                              const SparseOperator* first_op = nullptr);
+                              const SparseOperator* first_op = nullptr,
+                              SparseOperator* later_op = nullptr);
 
 Positions strength_normals(const StrengthProblem& p) {
     return robust_normals(*p.mesh, smoothed_copy(*p.op, *p.x, p.data_vertices, kSmoothingPasses));
@@ -2127,8 +2132,8 @@ StrengthEstimate estimate_strength(const StrengthProblem& p) {
     e.noise_level = p.noise_level > 0 ? p.noise_level : noise_level(p, normals);
     if (!(e.noise_level > 0)) return e;
     if (!p.pilot || !p.assemble_at) return risk_minimum(p, normals, e);
-    SparseOperator model = *p.op;
-    model_steps(p, *p.x, model);
+    SparseOperator model = *p.op, later_op;
+    model_steps(p, *p.x, model, &later_op);
     bool usable = model.size() == p.op->size();
     for (int i = 0; i < model.size() && usable; ++i) usable = !(*p.free)[i] || model.mass[i] > 0;
     StrengthProblem q = p;
@@ -2137,53 +2142,55 @@ StrengthEstimate estimate_strength(const StrengthProblem& p) {
     // L^2 steps of the curvature flow: the residual from the later steps' operator alone
     // (header, "Several steps").
     const bool later = usable && p.residual_on_later_steps && p.order >= 2 &&
-                       !p.explicit_integration && !p.weight;
-    return risk_minimum(q, normals, e, true, nullptr, later ? p.op : nullptr);
+                       !p.explicit_integration && !p.weight && later_op.size() > 0;
+    if (!later) later_op = SparseOperator();
+    return risk_minimum(q, normals, e, true, nullptr, later ? p.op : nullptr,
+                        later ? &later_op : nullptr);
 }
 
 // The later steps' process for problem p (its operator the steps' mean, `first` the first
-// step's), or nothing where it cannot run paired (step_group) or its operator loses a mass.
-// Assembled after the perturbed problem, whose own assembly would otherwise peak beside it. Its
-// sketch shares the rows and restoration of `sketch`, the movement's (the same data rows).
+// step's) on `op`, the later steps' operator (model_steps), which it takes over, or nothing where
+// it cannot run paired (step_group) or its operator loses a mass. Started before the perturbed
+// problem is assembled, so that `op` keeps only its masses through that assembly's peak. Its
+// sketch (later_sketch) shares the rows and restoration of the movement's.
 std::unique_ptr<LaterSteps> later_steps(const StrengthProblem& p, const Context& ctx,
-                                        const Perturbation* mc, const SparseOperator& first,
-                                        const Sketch& sketch) {
-    if (!mc || !mc->paired || p.steps < 2 || !weights_of(*p.op) || !weights_of(first) ||
+                                        const SparseOperator& first, SparseOperator& op) {
+    if (p.steps < 2 || !weights_of(*p.op) || !weights_of(first) ||
         first.column != p.op->column || first.row_start != p.op->row_start)
         return nullptr;
     auto later = std::make_unique<LaterSteps>();
-    later->op = later_operator(p, *p.x, *p.op);
-    SparseOperator& op = later->op;
-    if (op.size() != p.op->size()) return nullptr;
-    for (int i = 0; i < op.size(); ++i)
-        if ((*p.free)[i] && !(op.mass[i] > 0)) return nullptr;
-    op.threads = p.op->threads;
+    later->op = std::move(op);
+    SparseOperator& taken = later->op;
+    if (taken.size() != p.op->size()) return nullptr;
+    for (int i = 0; i < taken.size(); ++i)
+        if ((*p.free)[i] && !(taken.mass[i] > 0)) return nullptr;
+    taken.threads = p.op->threads;
     later->problem = p;
-    later->problem.op = &op;
+    later->problem.op = &taken;
     later->ctx.reset(new Context{later->problem, ctx.c, ctx.data, Positions(), ctx.n, ctx.squared,
                                  {}, Positions()});
-    later->ctx->c.op = &op;
+    later->ctx->c.op = &taken;
     if (!pairable(ctx, *later->ctx)) return nullptr;  // also: the same rows and columns as p's
     start_movement(*later->ctx, later->u);
-    later->sketch = Sketch::like(sketch);
     // step_group reads the columns from p's operator and forms the weights from the mean's and
     // the first step's: the later operator keeps its masses only.
     const double s = p.steps;
     later->blend = Blend{weights_of(*p.op), weights_of(first), s / (s - 1), -1 / (s - 1)};
-    std::vector<int>().swap(op.row_start);
-    std::vector<int>().swap(op.column);
-    std::vector<double>().swap(op.weight);
+    std::vector<int>().swap(taken.row_start);
+    std::vector<int>().swap(taken.column);
+    std::vector<double>().swap(taken.weight);
     return later;
 }
 
 // The risk curve of problem p (noise level in e) and its minimizer. With soft weights, L^2 runs
 // on the model of Context::weight_root unless !model_weights; `assembled` goes to perturb().
 // With `first_op` (p's operator the steps' mean of it and the later steps', model_steps; L^2
-// without soft weights) the residual comes from the later steps' operator alone, the divergence
-// from p's (header, "Several steps").
+// without soft weights) and `later_op` (the later steps' operator, taken and released) the
+// residual comes from the later steps' operator alone, the divergence from p's (header, "Several
+// steps").
 StrengthEstimate risk_minimum(const StrengthProblem& p, const Positions& normals, StrengthEstimate e,
                               bool model_weights, SparseOperator* assembled,
-                              const SparseOperator* first_op) {
+                              const SparseOperator* first_op, SparseOperator* later_op) {
     const StrengthEstimate given = e;
     Context ctx{p, LinearSystem{}, {}, Positions(), p.op->size(), false, {}, Positions()};
     ctx.c.op = p.op;
@@ -2223,14 +2230,17 @@ StrengthEstimate risk_minimum(const StrengthProblem& p, const Positions& normals
 
     Lanczos u, z;
     start_movement(ctx, u);
+    std::unique_ptr<LaterSteps> later =
+        first_op && later_op && ctx.squared && ctx.weight_root.empty()
+            ? later_steps(p, ctx, *first_op, *later_op)
+            : nullptr;
+    if (later_op) *later_op = SparseOperator();
     const std::unique_ptr<Perturbation> mc = perturb(ctx, normals, e.noise_level, assembled);
     if (mc) z.active = {{false, false, false}};  // the divergence replaces the probes
     else start_probes(ctx, z, count);
     Sketch sketch(ctx, static_cast<int>(count), restoration(p, normals));
-    const std::unique_ptr<LaterSteps> later =
-        first_op && ctx.squared && ctx.weight_root.empty()
-            ? later_steps(p, ctx, mc.get(), *first_op, sketch)
-            : nullptr;
+    if (!mc || !mc->paired) later.reset();  // it steps only in step_group, beside the others
+    if (later) later->sketch = Sketch::like(sketch);
     const Search found =
         search(ctx, u, z, mc.get(), sketch, normals, count, e.noise_level, later.get());
     e.lanczos_steps = static_cast<int>(
