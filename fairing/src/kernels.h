@@ -136,14 +136,24 @@ struct AvxGather {
     }
 };
 #define FAIRING_AVX_TARGET __attribute__((target("avx"), flatten))
-// Whether this processor runs AVX (checked once).
-inline bool has_avx() {
-    static const bool avx = __builtin_cpu_supports("avx");
-    return avx;
-}
-#else
-inline bool has_avx() { return false; }
 #endif
+
+// Whether the AVX passes may run: true unless a test switches them off to compare their bits with
+// the scalar passes' (tests/engine/test_auto_strength.cpp).
+inline bool& avx_passes_allowed() {
+    static bool allowed = true;
+    return allowed;
+}
+
+// Whether to run the AVX passes: this processor runs AVX (checked once) and they are allowed.
+inline bool has_avx() {
+#ifdef FAIRING_AVX
+    static const bool avx = __builtin_cpu_supports("avx");
+    return avx && avx_passes_allowed();
+#else
+    return false;
+#endif
+}
 
 // k_row_with for K's weights, null when they are all 1 (weights_of).
 inline void k_row(int i, const double* xs, const int* start, const int* column,
