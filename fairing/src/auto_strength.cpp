@@ -384,6 +384,8 @@ struct ProcessRows {
     const char* free;
     const int* start;
     const int* column;
+    // D_i of a free row (d_of(), from the arrays).
+    double d(int i) const { return soft && i < data ? mass[i] / soft[i] : mass[i]; }
 };
 
 // Rows [first, end) of process r: w' = y / d - beta_{j-1} v_{j-1} over v_{j-1}, with y = A v_j
@@ -399,8 +401,7 @@ void process_rows(const ProcessRows& r, const Weights& weight, int first, int en
         system_row(r.diagonal ? r.diagonal[i] : 0.0, r.scale, x, s0, s1, s2, r.free[i] != 0, y,
                    acc);
         if (!r.free[i]) continue;
-        // d_of(), from the arrays
-        const double d = r.soft && i < r.data ? r.mass[i] / r.soft[i] : r.mass[i];
+        const double d = r.d(i);
         const double xc[3] = {x[0], x[1], x[2]};  // read before w is written: no alias to fear
         double* w = r.w + 3 * i;
         for (int c = 0; c < 3; ++c) {
@@ -434,8 +435,7 @@ __attribute__((target("avx"))) void process_rows_avx(const ProcessRows& r, const
         const __m256d y = _mm256_add_pd(_mm256_mul_pd(diagonal, x), _mm256_mul_pd(scale, s));
         if (!r.free[i]) continue;
         alpha = _mm256_add_pd(alpha, _mm256_mul_pd(x, y));
-        const __m256d d =
-            _mm256_set1_pd(r.soft && i < r.data ? r.mass[i] / r.soft[i] : r.mass[i]);
+        const __m256d d = _mm256_set1_pd(r.d(i));
         double* at = r.w + 3 * i;
         const __m256d w =
             _mm256_sub_pd(_mm256_div_pd(y, d), _mm256_mul_pd(beta, load_row(at)));
@@ -1183,36 +1183,40 @@ private:
     // Sketch::add's work on one run of rows, one process at a time, row by row (ScalarLanes) or
     // with a row's three columns in one register (AvxLanes, the same bits).
     struct ScalarLanes {
-        // Forms rows [first, end) of l's pending basis vector v (Lanczos::pending): (current - shift
-        // previous) * scale on the free rows, 0 elsewhere, written back.
-        void settle_rows(const Lanczos& l, const char* free, double* v, int first, int end) {
+        // Forms rows [first, end) of l's pending basis vector v (Lanczos::pending): (current -
+        // shift previous) * scale on the free rows, 0 elsewhere, written back.
+        void settle_rows(const Lanczos& l, const char* free, double* v, int first,
+                         int end) const {
             if (!l.pending) return;
             const double* previous = l.previous.data();
             const double shift[3] = {l.shift[0], l.shift[1], l.shift[2]};
             const double scale[3] = {l.scale[0], l.scale[1], l.scale[2]};
             for (int i = first; i < end; ++i)
                 for (int c = 0; c < 3; ++c)
-                    v[3 * i + c] =
-                        free[i] ? (v[3 * i + c] - shift[c] * previous[3 * i + c]) * scale[c] : 0.0;
+                    v[3 * i + c] = free[i] ? (v[3 * i + c] - shift[c] * previous[3 * i + c]) *
+                                                 scale[c]
+                                           : 0.0;
         }
         // One process's rows [first, end) (formed) of a chunk ending at chunk_end: each vertex's
-        // normal components n_c v_c into its bucket (b >= 0) and its component's sums (k >= 0; and
-        // add_moments()), with b_sign the probe's sums b n_c v_c too. A run of rows of one
+        // normal components n_c v_c into its bucket (b >= 0) and its component's sums (k >= 0;
+        // and add_moments()), with b_sign the probe's sums b n_c v_c too. A run of rows of one
         // component keeps that component's nine sums in registers (loaded at the run's start and
-        // stored at its end) and the probe's three for the whole range, so every sum takes the same
-        // rows in the same order.
+        // stored at its end) and the probe's three for the whole range, so every sum takes the
+        // same rows in the same order.
         void add_rows(const Rows& r, const std::array<Eigen::Index, 3>& slot, const double* v,
-                             const signed char* b_sign, int first, int end, int chunk_end,
-                             double* to_bucket, double* to_component, double* to_moment,
-                             double* to_probe) {
+                      const signed char* b_sign, int first, int end, int chunk_end,
+                      double* to_bucket, double* to_component, double* to_moment,
+                      double* to_probe) const {
             double probe[3] = {0, 0, 0};
             if (to_probe)
                 for (int c = 0; c < 3; ++c) probe[c] = to_probe[c];
             double sums[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
             int run = -1;  // the component whose sums `sums` holds
             for (int i = first; i < end; ++i) {
-                const int ahead = i + kSketchPrefetch < chunk_end ? r.bucket[i + kSketchPrefetch] : -1;
-                if (ahead >= 0) prefetch_for_write(to_bucket + 3 * static_cast<std::size_t>(ahead));
+                const int ahead =
+                    i + kSketchPrefetch < chunk_end ? r.bucket[i + kSketchPrefetch] : -1;
+                if (ahead >= 0)
+                    prefetch_for_write(to_bucket + 3 * static_cast<std::size_t>(ahead));
                 const int b = r.bucket[i];
                 const int k = i < r.components_known ? r.component[i] : -1;
                 const int bi = b_sign ? b_sign[i] : 0;
@@ -1250,11 +1254,11 @@ private:
             if (to_probe)
                 for (int c = 0; c < 3; ++c) to_probe[c] = probe[c];
         }
-        // The perturbed movement's probe functionals b n . v' over rows [first, end), its three sums
-        // in registers.
+        // The perturbed movement's probe functionals b n . v' over rows [first, end), its three
+        // sums in registers.
         void add_probe(const signed char* b_sign, const double* nv, const double* v,
-                              const std::array<bool, 3>& active, int first, int end,
-                              double* to_probe) {
+                       const std::array<bool, 3>& active, int first, int end,
+                       double* to_probe) const {
             double probe[3] = {to_probe[0], to_probe[1], to_probe[2]};
             for (int i = first; i < end; ++i) {
                 const int bi = b_sign[i];

@@ -919,16 +919,18 @@ TEST(AutoStrength, AvxPassesGiveTheScalarPassesBits) {
     const TriangleMesh sphere = noisy_sphere(0.25, 4);
     const TriangleMesh spheres =
         meshes::merge(sphere, meshes::translated(noisy_sphere(0.25, 3, 9), Vec3(5, 0, 0)));
+    const std::pair<Operator, int> settings[] = {{Operator::Umbrella, 1},
+                                                 {Operator::CurvatureFlow, 4}};
     for (const TriangleMesh* m : {&torus, &spheres}) {
         const int n = static_cast<int>(m->positions.rows());
         const fairing::Constraints constraints[] = {
             {}, meshes::every_nth_fixed(n, 5), meshes::ramped_weights(n)};
         for (int k = 0; k < 3; ++k) {
-            for (const std::pair<Operator, int>& setting :
-                 {std::make_pair(Operator::Umbrella, 1), std::make_pair(Operator::CurvatureFlow, 4)}) {
+            for (const std::pair<Operator, int>& setting : settings) {
                 SCOPED_TRACE(testing::Message()
                              << n << " vertices, " << fairing::to_string(setting.first) << " x"
-                             << setting.second << ", " << (k == 0 ? "free" : k == 1 ? "selection" : "weights"));
+                             << setting.second << ", "
+                             << (k == 0 ? "free" : k == 1 ? "selection" : "weights"));
                 const Options o = automatic(setting.first, 2, setting.second);
                 const fairing::Result avx = fairing::fair(*m, constraints[k], o);
                 fairing::detail::avx_passes_allowed() = false;
