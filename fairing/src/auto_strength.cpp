@@ -1179,6 +1179,14 @@ private:
         const char* drift_cancelled;
         bool any_drift_cancelled;
         const int* component_slot;
+        // Row i's bucket b, component k (-1: none) and probe sign bi (0: none), once the bucket
+        // of the row kSketchPrefetch ahead in the chunk is asked for.
+        std::array<int, 3> head(int i, int chunk_end, const signed char* b_sign,
+                                double* to_bucket) const {
+            const int ahead = i + kSketchPrefetch < chunk_end ? bucket[i + kSketchPrefetch] : -1;
+            if (ahead >= 0) prefetch_for_write(to_bucket + 3 * static_cast<std::size_t>(ahead));
+            return {bucket[i], i < components_known ? component[i] : -1, b_sign ? b_sign[i] : 0};
+        }
     };
     // Sketch::add's work on one run of rows, one process at a time, row by row (ScalarLanes) or
     // with a row's three columns in one register (AvxLanes, the same bits).
@@ -1213,13 +1221,7 @@ private:
             double sums[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
             int run = -1;  // the component whose sums `sums` holds
             for (int i = first; i < end; ++i) {
-                const int ahead =
-                    i + kSketchPrefetch < chunk_end ? r.bucket[i + kSketchPrefetch] : -1;
-                if (ahead >= 0)
-                    prefetch_for_write(to_bucket + 3 * static_cast<std::size_t>(ahead));
-                const int b = r.bucket[i];
-                const int k = i < r.components_known ? r.component[i] : -1;
-                const int bi = b_sign ? b_sign[i] : 0;
+                const auto [b, k, bi] = r.head(i, chunk_end, b_sign, to_bucket);
                 if (k != run) {
                     if (run >= 0)
                         for (int m = 0; m < 9; ++m) to_component[9 * run + m] = sums[m];
@@ -1308,13 +1310,7 @@ private:
             __m256d by_area = _mm256_setzero_pd(), by_field = by_area, by_shape = by_area;
             int run = -1;  // the component whose sums by_area, by_field and by_shape hold
             for (int i = first; i < end; ++i) {
-                const int ahead =
-                    i + kSketchPrefetch < chunk_end ? r.bucket[i + kSketchPrefetch] : -1;
-                if (ahead >= 0)
-                    prefetch_for_write(to_bucket + 3 * static_cast<std::size_t>(ahead));
-                const int b = r.bucket[i];
-                const int k = i < r.components_known ? r.component[i] : -1;
-                const int bi = b_sign ? b_sign[i] : 0;
+                const auto [b, k, bi] = r.head(i, chunk_end, b_sign, to_bucket);
                 if (k != run) {
                     if (run >= 0) {
                         store_row(to_component + 9 * run, by_area);
